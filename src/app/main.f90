@@ -1,0 +1,4 @@
+program vemcontact_main
+   implicit none
+   print '(a)', 'vemcontact skeleton'
+end program vemcontact_main

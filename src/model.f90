@@ -1,0 +1,158 @@
+!> The analysis model as read from a deck: mesh, sets, materials, sections and steps.
+!> Everything is stored with internal 1-based indices; the user's ids are kept
+!> for output and messages.  Every node and element remembers the file and line
+!> it came from so that checks done after parsing can still name file:line.
+module vemcontact_model
+   use vemcontact_kinds, only: wp, ip
+   implicit none
+   private
+
+   public :: model_t, named_set_t, material_t, section_t, step_t
+   public :: dof_value_t, dload_t, string_t, source_loc_t
+   public :: find_set, location_string
+
+   !> Element topology
+   integer, parameter, public :: etype_polygon = 1 !< VPE/VPS: any number of nodes
+   integer, parameter, public :: etype_quad4 = 2   !< CPE4/CPS4
+   integer, parameter, public :: etype_tri3 = 3    !< CPE3/CPS3
+   !> Plane assumption
+   integer, parameter, public :: plane_strain = 1
+   integer, parameter, public :: plane_stress = 2
+   !> Discretisation of an element
+   integer, parameter, public :: form_vem = 1
+   integer, parameter, public :: form_fem = 2
+   !> Distributed load kinds
+   integer, parameter, public :: dload_grav = 1     !< body force rho*g*dir per unit volume
+   integer, parameter, public :: dload_pressure = 2 !< uniform pressure on an element side
+
+   !> A deferred-length string, for lists of names.
+   type :: string_t
+      character(len=:), allocatable :: s
+   end type string_t
+
+   !> Where an entity was defined: index into model%files and line number.
+   type :: source_loc_t
+      integer :: file = 0
+      integer :: line = 0
+   end type source_loc_t
+
+   !> A named node or element set; items are internal indices, sorted and unique.
+   type :: named_set_t
+      character(len=:), allocatable :: name   !< upper case
+      integer(ip), allocatable :: items(:)
+      type(source_loc_t) :: loc
+   end type named_set_t
+
+   !> Isotropic linear elastic material.
+   type :: material_t
+      character(len=:), allocatable :: name   !< upper case
+      real(wp) :: young = 0.0_wp
+      real(wp) :: poisson = 0.0_wp
+      real(wp) :: density = 0.0_wp
+      logical :: has_elastic = .false.
+      logical :: has_density = .false.
+      type(source_loc_t) :: loc
+   end type material_t
+
+   !> *SOLID SECTION: assigns material, thickness and formulation to an element set.
+   type :: section_t
+      character(len=:), allocatable :: elset     !< upper case
+      character(len=:), allocatable :: material  !< upper case
+      integer :: imat = 0                        !< index into model%materials
+      real(wp) :: thickness = 1.0_wp
+      integer :: formulation = 0                 !< form_vem, form_fem, or 0 = element default
+      type(source_loc_t) :: loc
+   end type section_t
+
+   !> A prescribed value on one degree of freedom (*BOUNDARY, *CLOAD).
+   type :: dof_value_t
+      integer(ip) :: node = 0
+      integer :: dof = 0          !< 1 = x, 2 = y
+      real(wp) :: value = 0.0_wp
+   end type dof_value_t
+
+   !> A distributed load on one element (*DLOAD).
+   type :: dload_t
+      integer(ip) :: elem = 0
+      integer :: kind = 0         !< dload_grav or dload_pressure
+      integer :: side = 0         !< for pressure: side k runs from node k to node k+1
+      real(wp) :: magnitude = 0.0_wp  !< g for GRAV, p for pressure (positive pushes inward)
+      real(wp) :: dir(2) = 0.0_wp     !< unit direction for GRAV
+   end type dload_t
+
+   !> One *STEP.  Loads follow CalculiX: with OP=MOD (default) a step's entries
+   !> replace those of earlier steps on the same dof/element and keep the rest;
+   !> OP=NEW on a keyword first removes everything of that kind from earlier steps.
+   type :: step_t
+      character(len=:), allocatable :: name
+      logical :: boundary_new = .false.
+      logical :: cload_new = .false.
+      logical :: dload_new = .false.
+      type(dof_value_t), allocatable :: boundary(:)
+      type(dof_value_t), allocatable :: cload(:)
+      type(dload_t), allocatable :: dload(:)
+      type(source_loc_t) :: loc
+   end type step_t
+
+   !> The whole model.
+   type :: model_t
+      character(len=:), allocatable :: heading
+      type(string_t), allocatable :: files(:)      !< deck and included files, for messages
+      ! nodes
+      integer(ip) :: nnode = 0
+      integer(ip), allocatable :: node_id(:)       !< user id of node i
+      real(wp), allocatable :: x(:, :)             !< (2, nnode) coordinates
+      type(source_loc_t), allocatable :: node_loc(:)
+      ! elements, connectivity in CSR form: nodes of element e are
+      ! elem_conn(elem_ptr(e):elem_ptr(e+1)-1), counter-clockwise
+      integer(ip) :: nelem = 0
+      integer(ip), allocatable :: elem_id(:)
+      integer(ip), allocatable :: elem_ptr(:)
+      integer(ip), allocatable :: elem_conn(:)
+      integer, allocatable :: elem_type(:)         !< etype_*
+      integer, allocatable :: elem_plane(:)        !< plane_strain / plane_stress
+      integer, allocatable :: elem_form(:)         !< form_* after sections are applied
+      integer, allocatable :: elem_mat(:)          !< material index, 0 = none
+      real(wp), allocatable :: elem_thick(:)
+      type(source_loc_t), allocatable :: elem_loc(:)
+      ! sets, materials, sections, steps
+      type(named_set_t), allocatable :: nsets(:)
+      type(named_set_t), allocatable :: elsets(:)
+      type(material_t), allocatable :: materials(:)
+      type(section_t), allocatable :: sections(:)
+      !> boundary conditions and loads given before the first *STEP: they hold in every step
+      type(step_t) :: initial
+      type(step_t), allocatable :: steps(:)
+   end type model_t
+
+contains
+
+   !> Index of the set called `name` (case-insensitive, caller passes upper case), 0 if absent.
+   pure function find_set(sets, name) result(k)
+      type(named_set_t), intent(in) :: sets(:)
+      character(len=*), intent(in) :: name
+      integer :: k
+      do k = 1, size(sets)
+         if (sets(k)%name == name) return
+      end do
+      k = 0
+   end function find_set
+
+   !> "file:line" for messages.
+   pure function location_string(model, loc) result(s)
+      type(model_t), intent(in) :: model
+      type(source_loc_t), intent(in) :: loc
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      if (loc%file < 1 .or. .not. allocated(model%files)) then
+         s = '<unknown>'
+         return
+      end if
+      if (loc%file > size(model%files)) then
+         s = '<unknown>'
+         return
+      end if
+      write (buf, '(i0)') loc%line
+      s = model%files(loc%file)%s//':'//trim(buf)
+   end function location_string
+end module vemcontact_model
