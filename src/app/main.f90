@@ -1,4 +1,4 @@
 program vemcontact_main
    implicit none
-   print '(a)', 'vemcontact skeleton'
+   print '(a)', 'vemcontact: under construction'
 end program vemcontact_main

@@ -1,0 +1,146 @@
+!> Command line of the vemcontact program.
+module vemcontact_app_cli
+   use vemcontact_error, only: error_t, fatal_error, err_input
+   implicit none
+   private
+
+   public :: cli_t, parse_command_line, usage_text, version_text
+
+   !> Version of the program (kept in one place).
+   character(len=*), parameter, public :: vemcontact_version = '0.1.0'
+
+   integer, parameter, public :: ordering_auto = 0, ordering_metis = 1, ordering_cholmod = 2
+
+   type :: cli_t
+      character(len=:), allocatable :: deck      !< path of the input deck
+      character(len=:), allocatable :: out_dir   !< folder for results
+      character(len=:), allocatable :: job       !< job name: deck file name without .inp
+      logical :: help = .false.
+      logical :: version = .false.
+      logical :: quiet = .false.
+      logical :: write_matrix = .false.
+      integer :: ordering = ordering_auto
+   end type cli_t
+
+contains
+
+   function usage_text() result(s)
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: nl = new_line('a')
+      s = 'usage: vemcontact [options] DECK'//nl//nl// &
+          '2D small-strain linear elasticity with the virtual element method (VEM) on'//nl// &
+          'polygonal meshes, FEM baselines, for decks in Abaqus/CalculiX keyword syntax.'//nl//nl// &
+          'Results are written next to the deck (or to -o DIR), named after the deck:'//nl// &
+          '  JOB.pvd, JOB_NNNN.vtu (one per step), JOB.h5, JOB.log'//nl//nl// &
+          'options:'//nl// &
+          '  -o, --output DIR      write results into DIR (created if missing)'//nl// &
+          '  --ordering METHOD     fill-reducing ordering: auto (default), metis (METIS on'//nl// &
+          '                        the node graph), cholmod (CHOLMOD''s default strategy)'//nl// &
+          '  --write-matrix        also write the first step''s matrix as JOB.mtx (Matrix Market)'//nl// &
+          '  -q, --quiet           log to JOB.log only'//nl// &
+          '  -h, --help            show this help'//nl// &
+          '  --version             show the version'
+   end function usage_text
+
+   function version_text() result(s)
+      character(len=:), allocatable :: s
+      s = 'vemcontact '//vemcontact_version
+   end function version_text
+
+   subroutine parse_command_line(cli, error)
+      type(cli_t), intent(out) :: cli
+      type(error_t), allocatable, intent(out) :: error
+      integer :: i, n
+      character(len=:), allocatable :: arg
+      n = command_argument_count()
+      i = 0
+      do while (i < n)
+         i = i + 1
+         call get_arg(i, arg)
+         select case (arg)
+         case ('-h', '--help')
+            cli%help = .true.
+         case ('--version')
+            cli%version = .true.
+         case ('-q', '--quiet')
+            cli%quiet = .true.
+         case ('--write-matrix')
+            cli%write_matrix = .true.
+         case ('-o', '--output', '--ordering')
+            if (i == n) then
+               call fatal_error(error, 'error: option '//arg//' needs a value (see vemcontact --help)', err_input)
+               return
+            end if
+            i = i + 1
+            if (arg == '--ordering') then
+               call get_arg(i, arg)
+               select case (arg)
+               case ('auto'); cli%ordering = ordering_auto
+               case ('metis'); cli%ordering = ordering_metis
+               case ('cholmod'); cli%ordering = ordering_cholmod
+               case default
+                  call fatal_error(error, 'error: --ordering takes auto, metis or cholmod, not "'//arg//'"', err_input)
+                  return
+               end select
+            else
+               call get_arg(i, cli%out_dir)
+            end if
+         case default
+            if (len(arg) > 0) then
+               if (arg(1:1) == '-') then
+                  call fatal_error(error, 'error: unknown option '//arg//' (see vemcontact --help)', err_input)
+                  return
+               end if
+            end if
+            if (allocated(cli%deck)) then
+               call fatal_error(error, 'error: one deck at a time: got "'//cli%deck//'" and "'//arg//'"', err_input)
+               return
+            end if
+            cli%deck = arg
+         end select
+      end do
+      if (cli%help .or. cli%version) return
+      if (.not. allocated(cli%deck)) then
+         call fatal_error(error, 'error: no input deck given'//new_line('a')//usage_text(), err_input)
+         return
+      end if
+      if (.not. allocated(cli%out_dir)) cli%out_dir = dirname(cli%deck)
+      cli%job = job_name(cli%deck)
+   end subroutine parse_command_line
+
+   subroutine get_arg(i, arg)
+      integer, intent(in) :: i
+      character(len=:), allocatable, intent(out) :: arg
+      integer :: length
+      call get_command_argument(i, length=length)
+      allocate (character(len=length) :: arg)
+      if (length > 0) call get_command_argument(i, arg)
+   end subroutine get_arg
+
+   !> Folder part of a path ("." if none).
+   pure function dirname(path) result(d)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: d
+      integer :: k
+      k = index(path, '/', back=.true.)
+      if (k == 0) then
+         d = '.'
+      else if (k == 1) then
+         d = '/'
+      else
+         d = path(:k - 1)
+      end if
+   end function dirname
+
+   !> File name without folder and without a trailing ".inp".
+   pure function job_name(path) result(j)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: j
+      integer :: k
+      j = path(index(path, '/', back=.true.) + 1:)
+      k = len(j)
+      if (k > 4) then
+         if (j(k - 3:) == '.inp' .or. j(k - 3:) == '.INP') j = j(:k - 4)
+      end if
+   end function job_name
+end module vemcontact_app_cli

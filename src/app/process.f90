@@ -1,0 +1,50 @@
+!> Interop with the C library for ending the process with a status code: Fortran's
+!> `stop code` prints "STOP code", which would clutter the one clear message we give.
+module vemcontact_app_process
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+   use vemcontact_error, only: error_t, fatal_error, err_io
+   implicit none
+   private
+
+   public :: exit_process, make_directory
+
+   interface
+      subroutine c_exit(status) bind(C, name='exit')
+         import :: c_int
+         integer(c_int), value :: status
+      end subroutine c_exit
+      function c_mkdir(path, mode) result(rc) bind(C, name='mkdir')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: mode
+         integer(c_int) :: rc
+      end function c_mkdir
+   end interface
+
+contains
+
+   !> Flush Fortran units and end the process with `status`.
+   subroutine exit_process(status)
+      integer, intent(in) :: status
+      flush (6)
+      flush (0)
+      call c_exit(int(status, c_int))
+   end subroutine exit_process
+
+   !> Create a folder and its parents (like mkdir -p); existing folders are fine.
+   subroutine make_directory(path, error)
+      character(len=*), intent(in) :: path
+      type(error_t), allocatable, intent(out) :: error
+      integer :: k, rc
+      logical :: exists
+      do k = 2, len(path) + 1
+         if (k <= len(path)) then
+            if (path(k:k) /= '/') cycle
+         end if
+         ! 493 = octal 755; an already existing folder makes mkdir fail harmlessly
+         rc = c_mkdir(path(:k - 1)//c_null_char, 493_c_int)
+      end do
+      inquire (file=path//'/.', exist=exists)
+      if (.not. exists) call fatal_error(error, 'error: cannot create the output folder '//path, err_io)
+   end subroutine make_directory
+end module vemcontact_app_process

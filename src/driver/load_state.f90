@@ -1,0 +1,159 @@
+!> The boundary conditions and loads in force during a step, accumulated over
+!> the steps with CalculiX's OP semantics: with OP=MOD (default) a step's entry
+!> replaces an earlier one on the same dof (or element, load kind and side) and
+!> keeps the others; OP=NEW first removes all entries of that kind from earlier
+!> steps.  Conditions given before the first *STEP (model definition) hold in
+!> every step and are not removed by OP=NEW.
+module vemcontact_driver_load_state
+   use vemcontact_kinds, only: wp, ip
+   use vemcontact_model, only: model_t, step_t, dload_t, dof_value_t
+   implicit none
+   private
+
+   public :: load_state_t, init_load_state, advance_load_state
+
+   type :: load_state_t
+      logical, allocatable :: fixed(:)        !< (ndof) dof has a prescribed displacement
+      real(wp), allocatable :: prescribed(:)  !< (ndof) its value
+      real(wp), allocatable :: force(:)       !< (ndof) concentrated loads
+      type(dload_t), allocatable :: dload(:)  !< distributed loads in force
+      logical, allocatable :: base_fixed(:)   !< model-definition constraints
+      real(wp), allocatable :: base_value(:)
+   end type load_state_t
+
+contains
+
+   !> State before the first step: only the model-definition boundary conditions.
+   subroutine init_load_state(model, st)
+      type(model_t), intent(in) :: model
+      type(load_state_t), intent(out) :: st
+      integer(ip) :: ndof
+      ndof = 2*model%nnode
+      allocate (st%fixed(ndof), source=.false.)
+      allocate (st%prescribed(ndof), source=0.0_wp)
+      allocate (st%force(ndof), source=0.0_wp)
+      allocate (st%dload(0))
+      if (allocated(model%initial%boundary)) call set_dofs(model%initial%boundary, st%fixed, st%prescribed)
+      st%base_fixed = st%fixed
+      st%base_value = st%prescribed
+   end subroutine init_load_state
+
+   !> Apply the entries of `step` to the state left by the previous step.
+   subroutine advance_load_state(step, st)
+      type(step_t), intent(in) :: step
+      type(load_state_t), intent(inout) :: st
+      logical, allocatable :: dummy(:)
+      if (step%boundary_new) then
+         st%fixed = st%base_fixed
+         st%prescribed = st%base_value
+      end if
+      if (allocated(step%boundary)) call set_dofs(step%boundary, st%fixed, st%prescribed)
+      if (step%cload_new) st%force = 0.0_wp
+      if (allocated(step%cload)) then
+         allocate (dummy(size(st%force)), source=.false.)
+         call set_dofs(step%cload, dummy, st%force)
+      end if
+      if (step%dload_new) then
+         deallocate (st%dload)
+         allocate (st%dload(0))
+      end if
+      if (allocated(step%dload)) call merge_dloads(st%dload, step%dload)
+   end subroutine advance_load_state
+
+   !> Set the value of each listed dof, the last entry for a dof winning.
+   pure subroutine set_dofs(entries, flag, value)
+      type(dof_value_t), intent(in) :: entries(:)
+      logical, intent(inout) :: flag(:)
+      real(wp), intent(inout) :: value(:)
+      integer :: k, d
+      do k = 1, size(entries)
+         d = 2*entries(k)%node - 2 + entries(k)%dof
+         flag(d) = .true.
+         value(d) = entries(k)%value
+      end do
+   end subroutine set_dofs
+
+   !> Keep the old loads whose (element, kind, side) the new ones do not name; append the new ones.
+   subroutine merge_dloads(old, new)
+      type(dload_t), allocatable, intent(inout) :: old(:)
+      type(dload_t), intent(in) :: new(:)
+      integer(ip), allocatable :: keys(:, :), order(:)
+      logical, allocatable :: keep(:)
+      type(dload_t), allocatable :: merged(:)
+      integer :: k
+      allocate (keys(3, size(new)))
+      do k = 1, size(new)
+         keys(:, k) = [new(k)%elem, int(new(k)%kind, ip), int(new(k)%side, ip)]
+      end do
+      call sort_keys(keys, order)
+      allocate (keep(size(old)))
+      do k = 1, size(old)
+         keep(k) = .not. key_present(keys, order, [old(k)%elem, int(old(k)%kind, ip), int(old(k)%side, ip)])
+      end do
+      allocate (merged(count(keep) + size(new)))
+      merged(:count(keep)) = pack(old, keep)
+      merged(count(keep) + 1:) = new
+      call move_alloc(merged, old)
+   end subroutine merge_dloads
+
+   !> Index order sorting 3-integer keys lexicographically (insertion into a merge sort).
+   pure subroutine sort_keys(keys, order)
+      integer(ip), intent(in) :: keys(:, :)
+      integer(ip), allocatable, intent(out) :: order(:)
+      integer(ip), allocatable :: tmp(:)
+      integer :: n, width, lo, mid, hi, i, j, k
+      n = size(keys, 2)
+      allocate (order(n), tmp(n))
+      order = [(int(i, ip), i=1, n)]
+      width = 1
+      do while (width < n)
+         lo = 1
+         do while (lo <= n)
+            mid = min(lo + width, n + 1)
+            hi = min(lo + 2*width, n + 1)
+            i = lo; j = mid; k = lo
+            do while (k < hi)
+               if (i < mid .and. (j >= hi .or. .not. key_less(keys(:, order(j)), keys(:, order(i))))) then
+                  tmp(k) = order(i); i = i + 1
+               else
+                  tmp(k) = order(j); j = j + 1
+               end if
+               k = k + 1
+            end do
+            lo = hi
+         end do
+         order = tmp
+         width = 2*width
+      end do
+   end subroutine sort_keys
+
+   pure logical function key_less(a, b)
+      integer(ip), intent(in) :: a(3), b(3)
+      integer :: k
+      do k = 1, 3
+         if (a(k) /= b(k)) then
+            key_less = a(k) < b(k)
+            return
+         end if
+      end do
+      key_less = .false.
+   end function key_less
+
+   pure logical function key_present(keys, order, key)
+      integer(ip), intent(in) :: keys(:, :), order(:), key(3)
+      integer :: lo, hi, mid
+      lo = 1; hi = size(order)
+      key_present = .false.
+      do while (lo <= hi)
+         mid = (lo + hi)/2
+         if (all(keys(:, order(mid)) == key)) then
+            key_present = .true.
+            return
+         else if (key_less(keys(:, order(mid)), key)) then
+            lo = mid + 1
+         else
+            hi = mid - 1
+         end if
+      end do
+   end function key_present
+end module vemcontact_driver_load_state

@@ -1,0 +1,63 @@
+!> Parts not held against rigid motion are found and described.
+program test_supports
+   use vemcontact_kinds, only: wp, ip
+   use vemcontact_testing, only: checker_t
+   use vemcontact_error, only: error_t, err_model
+   use vemcontact_model, only: model_t, string_t, source_loc_t
+   use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes
+   implicit none
+   type(checker_t) :: t
+   type(model_t) :: m
+   type(error_t), allocatable :: error
+   integer(ip), allocatable :: part(:)
+   integer(ip) :: nparts
+   logical :: fixed(16)
+
+   ! two separate unit squares (nodes 1-4 and 5-8) and a lone node 9..8 unused
+   m%nnode = 8
+   m%x = reshape([0., 0., 1., 0., 1., 1., 0., 1., 3., 0., 4., 0., 4., 1., 3., 1.], [2, 8])*1.0_wp
+   m%nelem = 2
+   m%elem_ptr = [1, 5, 9]
+   m%elem_conn = [1, 2, 3, 4, 5, 6, 7, 8]
+   m%elem_id = [10, 20]
+   m%files = [string_t('deck.inp')]
+   m%elem_loc = [source_loc_t(1, 7), source_loc_t(1, 8)]
+   call find_parts(m, part, nparts)
+   call t%equal(int(nparts), 2, 'two parts')
+   call t%check(all(part(1:4) == part(1)) .and. all(part(5:8) == part(5)) .and. part(1) /= part(5), 'part labels')
+   call t%check(.not. any(unused_nodes(m)), 'no unused nodes')
+
+   ! part 1 clamped (node 1 both, node 4 x), part 2: pinned at one node only -> rotates
+   fixed = .false.
+   fixed([1, 2, 7]) = .true.
+   fixed([9, 10]) = .true.
+   call check_supports(m, part, nparts, fixed, error)
+   call t%check(allocated(error), 'pinned part floats')
+   if (allocated(error)) then
+      call t%equal(error%code, err_model, 'error category')
+      call t%check(index(error%message, 'rotate') > 0, 'rotation named: '//error%message)
+      print '(a)', error%message
+      call t%check(index(error%message, 'element 20') > 0, 'part named by an element id')
+      call t%check(index(error%message, 'deck.inp:8') > 0, 'part named by file:line')
+      call t%check(index(error%message, '(3.0') > 0 .or. index(error%message, '( 3.0') > 0 &
+                   .or. index(error%message, '(3.00') > 0, 'rotation centre is the pinned node (3,0)')
+      call t%check(index(error%message, 'element 10') == 0, 'held part not named')
+   end if
+   ! part 2 on rollers in y only -> translates in x
+   fixed(9:16) = .false.
+   fixed([10, 12]) = .true.
+   call check_supports(m, part, nparts, fixed, error)
+   call t%check(allocated(error), 'roller-only part floats')
+   if (allocated(error)) call t%check(index(error%message, 'translate') > 0, 'translation named: '//error%message)
+   ! part 2 held: x at node 5, y at nodes 5 and 6
+   fixed(9:16) = .false.
+   fixed([9, 10, 12]) = .true.
+   call check_supports(m, part, nparts, fixed, error)
+   call t%check(.not. allocated(error), 'both parts held')
+   ! no support at all
+   fixed = .false.
+   call check_supports(m, part, nparts, fixed, error)
+   call t%check(allocated(error), 'unsupported model')
+   if (allocated(error)) call t%check(index(error%message, 'no support') > 0, 'no support named')
+   call t%finish()
+end program test_supports
