@@ -1,0 +1,181 @@
+!> Plane polygon geometry: area, centroid, diameter, simplicity and convexity.
+!> Polygons are given as `xy(2, n)`, side k running from vertex k to vertex k+1
+!> (the last back to the first).  Everything is computed relative to the first
+!> vertex so that results do not lose digits when the element sits far from the
+!> origin.
+module vemcontact_element_geometry
+   use vemcontact_kinds, only: wp
+   implicit none
+   private
+
+   public :: polygon_signed_area, polygon_centroid, polygon_diameter
+   public :: polygon_is_simple, polygon_is_convex
+
+   !> Geometric tolerance relative to the polygon diameter.  Coordinates that
+   !> went through a few arithmetic operations (translation, scaling, a mesher's
+   !> decimal output) carry errors of a few ulp, about 1e-15 h; features smaller
+   !> than 1e-10 h are therefore indistinguishable from rounding a few hundred
+   !> thousand times over, while real features, such as the 1e-6 h edges that a
+   !> polygon clipper produces and that the VEM handles, stay four orders of
+   !> magnitude above the threshold.
+   real(wp), parameter, public :: geom_rtol = 1.0e-10_wp
+
+contains
+
+   !> Shoelace area, positive for counter-clockwise vertices; 0 for fewer than 3.
+   pure function polygon_signed_area(xy) result(a)
+      real(wp), intent(in) :: xy(:, :)
+      real(wp) :: a
+      integer :: k, n
+      n = size(xy, 2)
+      a = 0.0_wp
+      do k = 2, n - 1
+         a = a + cross2(xy(:, k) - xy(:, 1), xy(:, k + 1) - xy(:, 1))
+      end do
+      a = 0.5_wp*a
+   end function polygon_signed_area
+
+   !> Area centroid.  A polygon of zero area has no area centroid: the vertex
+   !> mean is returned then, so that callers never divide by zero.
+   pure subroutine polygon_centroid(xy, c)
+      real(wp), intent(in) :: xy(:, :)
+      real(wp), intent(out) :: c(2)
+      real(wp) :: a, w, p(2), q(2)
+      integer :: k, n
+      n = size(xy, 2)
+      if (n == 0) then
+         c = 0.0_wp
+         return
+      end if
+      a = 0.0_wp
+      c = 0.0_wp
+      do k = 2, n - 1
+         p = xy(:, k) - xy(:, 1)
+         q = xy(:, k + 1) - xy(:, 1)
+         w = cross2(p, q)
+         a = a + w
+         ! centroid of triangle (x1, xk, xk+1) relative to x1 is (p+q)/3,
+         ! weighted by twice its signed area
+         c = c + w*(p + q)
+      end do
+      if (.not. abs(a) > 0.0_wp) then
+         c = sum(xy, dim=2)/real(n, wp)
+      else
+         c = xy(:, 1) + c/(3.0_wp*a)
+      end if
+   end subroutine polygon_centroid
+
+   !> Largest vertex-to-vertex distance, the length scale of the element.
+   pure function polygon_diameter(xy) result(h)
+      real(wp), intent(in) :: xy(:, :)
+      real(wp) :: h
+      integer :: i, j
+      h = 0.0_wp
+      do j = 2, size(xy, 2)
+         do i = 1, j - 1
+            h = max(h, norm2(xy(:, j) - xy(:, i)))
+         end do
+      end do
+   end function polygon_diameter
+
+   !> True when the boundary does not cross or touch itself: no two vertices
+   !> closer than geom_rtol*h (this covers zero-length sides and repeated
+   !> vertices), no two non-adjacent sides closer than that, and no side folding
+   !> back onto its neighbour.  Consecutive collinear sides (a hanging node on a
+   !> straight side) are allowed: they are a legitimate VEM element.  Either
+   !> orientation is accepted; the sign of the area tells it.
+   pure function polygon_is_simple(xy) result(ok)
+      real(wp), intent(in) :: xy(:, :)
+      logical :: ok
+      real(wp) :: h, tol
+      integer :: i, j, n, ip1, jp1, im1
+      n = size(xy, 2)
+      ok = .false.
+      if (n < 3) return
+      h = polygon_diameter(xy)
+      if (h <= 0.0_wp) return
+      tol = geom_rtol*h
+      do j = 2, n
+         do i = 1, j - 1
+            if (norm2(xy(:, j) - xy(:, i)) <= tol) return
+         end do
+      end do
+      ! a side folds back on its predecessor exactly when the far end of the
+      ! shorter one lies on the longer one
+      do i = 1, n
+         im1 = modulo(i - 2, n) + 1
+         ip1 = modulo(i, n) + 1
+         if (point_segment_distance(xy(:, ip1), xy(:, im1), xy(:, i)) <= tol) return
+         if (point_segment_distance(xy(:, im1), xy(:, i), xy(:, ip1)) <= tol) return
+      end do
+      do i = 1, n - 2
+         ip1 = i + 1
+         do j = i + 2, n
+            if (i == 1 .and. j == n) cycle   ! sides n and 1 are adjacent
+            jp1 = modulo(j, n) + 1
+            if (segment_distance(xy(:, i), xy(:, ip1), xy(:, j), xy(:, jp1)) <= tol) return
+         end do
+      end do
+      ok = .true.
+   end function polygon_is_simple
+
+   !> True for a simple polygon that turns the same way at every vertex; a
+   !> vertex whose turn is within the geometric tolerance of straight (a
+   !> hanging node) does not break convexity.
+   pure function polygon_is_convex(xy) result(ok)
+      real(wp), intent(in) :: xy(:, :)
+      logical :: ok
+      real(wp) :: h, s, e1(2), e2(2)
+      integer :: i, n
+      ok = .false.
+      if (.not. polygon_is_simple(xy)) return
+      n = size(xy, 2)
+      h = polygon_diameter(xy)
+      s = sign(1.0_wp, polygon_signed_area(xy))
+      do i = 1, n
+         e1 = xy(:, i) - xy(:, modulo(i - 2, n) + 1)
+         e2 = xy(:, modulo(i, n) + 1) - xy(:, i)
+         ! cross/|e| is the distance of the next (or previous) vertex from the
+         ! line of the other side; the longer side gives the well-conditioned one
+         if (s*cross2(e1, e2) < -geom_rtol*h*max(norm2(e1), norm2(e2))) return
+      end do
+      ok = .true.
+   end function polygon_is_convex
+
+   pure function cross2(a, b) result(c)
+      real(wp), intent(in) :: a(2), b(2)
+      real(wp) :: c
+      c = a(1)*b(2) - a(2)*b(1)
+   end function cross2
+
+   !> Distance from p to the segment [a, b].
+   pure function point_segment_distance(p, a, b) result(dist)
+      real(wp), intent(in) :: p(2), a(2), b(2)
+      real(wp) :: dist
+      real(wp) :: e(2), ee, t
+      e = b - a
+      ee = dot_product(e, e)
+      t = 0.0_wp
+      if (ee > 0.0_wp) t = min(1.0_wp, max(0.0_wp, dot_product(p - a, e)/ee))
+      dist = norm2(p - (a + t*e))
+   end function point_segment_distance
+
+   !> Distance between the segments [a, b] and [c, d]: zero when they cross,
+   !> otherwise attained at an end point of one of them.
+   pure function segment_distance(a, b, c, d) result(dist)
+      real(wp), intent(in) :: a(2), b(2), c(2), d(2)
+      real(wp) :: dist
+      real(wp) :: o1, o2, o3, o4
+      o1 = cross2(b - a, c - a)
+      o2 = cross2(b - a, d - a)
+      o3 = cross2(d - c, a - c)
+      o4 = cross2(d - c, b - c)
+      if (((o1 > 0.0_wp .and. o2 < 0.0_wp) .or. (o1 < 0.0_wp .and. o2 > 0.0_wp)) .and. &
+          ((o3 > 0.0_wp .and. o4 < 0.0_wp) .or. (o3 < 0.0_wp .and. o4 > 0.0_wp))) then
+         dist = 0.0_wp
+         return
+      end if
+      dist = min(point_segment_distance(a, c, d), point_segment_distance(b, c, d), &
+                 point_segment_distance(c, a, b), point_segment_distance(d, a, b))
+   end function segment_distance
+end module vemcontact_element_geometry
