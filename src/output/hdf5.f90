@@ -1,0 +1,422 @@
+!> HDF5 results file: the mesh once, then one group per step; the layout is
+!> documented in docs/output-format.md.  The file is flushed after every step,
+!> so a run that fails later keeps the completed steps readable.
+!>
+!> This module is an interop spot: the HDF5 Fortran API passes buffers as
+!> `c_ptr` and handles as `hid_t`/`hsize_t`.  Every HDF5 return code is checked
+!> and turned into an `error_t` naming the file and the object; HDF5's own
+!> error printing is switched off, the message we return replaces it.
+!> Datasets are stored little-endian (`H5T_IEEE_F64LE`, `H5T_STD_I32LE`,
+!> `H5T_STD_I64LE`) whatever the host, and written contiguous and uncompressed:
+!> that is the fastest to write and to read back in slices.
+module vemcontact_output_hdf5
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_null_ptr
+   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
+                   h5fflush_f, h5gcreate_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
+                   h5sclose_f, h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, &
+                   h5aclose_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
+                   h5kind_to_type, H5F_ACC_TRUNC_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, &
+                   H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_STD_I64LE, H5T_C_S1, H5T_STR_NULLPAD_F, &
+                   H5_REAL_KIND, H5_INTEGER_KIND
+   use vemcontact_kinds, only: wp, ip, i8
+   use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
+   use vemcontact_model, only: model_t
+   implicit none
+   private
+
+   !> Value of the root attribute `format` and its version.
+   character(len=*), parameter, public :: h5_format_name = 'vemcontact-results'
+   integer(ip), parameter, public :: h5_format_version = 1_ip
+
+   !> Writer of one results file.  `open` creates (truncates) it, `write_mesh`
+   !> writes /mesh once, `write_step` adds /steps/NNNN, `close` (or finalization)
+   !> closes it.
+   type, public :: h5_writer_t
+      private
+      integer(hid_t) :: file = -1
+      character(len=:), allocatable :: path
+      !> sizes of the mesh written, to check the steps against; -1 before write_mesh
+      integer(ip) :: nnode = -1, nelem = -1
+   contains
+      procedure :: open => h5_open
+      procedure :: write_mesh => h5_write_mesh
+      procedure :: write_step => h5_write_step
+      procedure :: close => h5_close
+      procedure :: is_open => h5_is_open
+      final :: h5_final
+   end type h5_writer_t
+
+contains
+
+   !> Create (or truncate) the file `path`, write the root attributes and /steps.
+   subroutine h5_open(self, path, error)
+      class(h5_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      type(error_t), allocatable, intent(out) :: error
+      integer :: hdferr
+      integer(hid_t) :: grp
+
+      call h5_close(self)
+      self%path = path
+      self%nnode = -1
+      self%nelem = -1
+      ! h5open_f is reference counted by HDF5 and safe to call for every file
+      call h5open_f(hdferr)
+      if (failed(self, hdferr, 'initialising the HDF5 library', error)) return
+      call h5eset_auto_f(0, hdferr)
+      if (failed(self, hdferr, 'switching off HDF5 error printing', error)) return
+      call h5fcreate_f(path, H5F_ACC_TRUNC_F, self%file, hdferr)
+      if (failed(self, hdferr, 'creating the file', error)) then
+         self%file = -1
+         return
+      end if
+      call put_string_attribute(self, self%file, 'format', h5_format_name, error)
+      if (allocated(error)) return
+      call put_int_attribute(self, self%file, 'format_version', h5_format_version, error)
+      if (allocated(error)) return
+      call h5gcreate_f(self%file, 'steps', grp, hdferr)
+      if (failed(self, hdferr, 'creating group /steps', error)) return
+      call h5gclose_f(grp, hdferr)
+      if (failed(self, hdferr, 'closing group /steps', error)) return
+   end subroutine h5_open
+
+   !> Write /mesh: coordinates, ids, 0-based CSR connectivity, element type,
+   !> formulation and material.
+   subroutine h5_write_mesh(self, model, error)
+      class(h5_writer_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: error
+      integer(hid_t) :: grp
+      integer :: hdferr
+      integer(ip) :: nconn
+      integer(hsize_t) :: nn, ne
+
+      if (.not. check_open(self, 'write_mesh', error)) return
+      if (.not. mesh_arrays_fit(model)) then
+         call fatal_error(error, 'write_mesh: model arrays shorter than nnode/nelem ('// &
+                          self%path//')', err_internal)
+         return
+      end if
+      call h5gcreate_f(self%file, 'mesh', grp, hdferr)
+      if (failed(self, hdferr, 'creating group /mesh', error)) return
+      nconn = model%elem_ptr(model%nelem + 1) - 1_ip
+      nn = int(model%nnode, hsize_t)
+      ne = int(model%nelem, hsize_t)
+      call put_real(self, grp, 'coordinates', [2_hsize_t, nn], model%x, error)
+      if (.not. allocated(error)) call put_int(self, grp, 'node_ids', [nn], model%node_id, error)
+      if (.not. allocated(error)) &
+         call put_i8(self, grp, 'element_offsets', [ne + 1], &
+                     int(model%elem_ptr(1:model%nelem + 1), i8) - 1_i8, error)
+      if (.not. allocated(error)) &
+         call put_int(self, grp, 'element_connectivity', [int(nconn, hsize_t)], &
+                      model%elem_conn(1:nconn) - 1_ip, error)
+      if (.not. allocated(error)) call put_int(self, grp, 'element_ids', [ne], model%elem_id, error)
+      if (.not. allocated(error)) &
+         call put_int(self, grp, 'element_material', [ne], int(model%elem_mat(1:model%nelem), ip), &
+                      error)
+      if (.not. allocated(error)) &
+         call put_int(self, grp, 'element_type', [ne], int(model%elem_type(1:model%nelem), ip), error)
+      if (.not. allocated(error)) &
+         call put_int(self, grp, 'element_formulation', [ne], &
+                      int(model%elem_form(1:model%nelem), ip), error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group /mesh', error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing', error)) return
+      self%nnode = model%nnode
+      self%nelem = model%nelem
+   end subroutine h5_write_mesh
+
+   !> The model's arrays hold at least what nnode and nelem promise (they are
+   !> passed by sequence association, so a short array would be read past its end).
+   pure logical function mesh_arrays_fit(model)
+      type(model_t), intent(in) :: model
+      mesh_arrays_fit = .false.
+      if (model%nnode < 0 .or. model%nelem < 0) return
+      if (.not. (allocated(model%x) .and. allocated(model%node_id) .and. &
+                 allocated(model%elem_ptr) .and. allocated(model%elem_conn) .and. &
+                 allocated(model%elem_id) .and. allocated(model%elem_mat) .and. &
+                 allocated(model%elem_type) .and. allocated(model%elem_form))) return
+      if (size(model%x, 1) /= 2 .or. size(model%x, 2) < model%nnode) return
+      if (size(model%node_id) < model%nnode .or. size(model%elem_ptr) < model%nelem + 1) return
+      if (size(model%elem_id) < model%nelem .or. size(model%elem_mat) < model%nelem .or. &
+          size(model%elem_type) < model%nelem .or. size(model%elem_form) < model%nelem) return
+      if (size(model%elem_conn) < model%elem_ptr(model%nelem + 1) - 1) return
+      mesh_arrays_fit = .true.
+   end function mesh_arrays_fit
+
+   !> Write /steps/NNNN (index zero-padded to 4 digits, wider beyond 9999) with
+   !> attributes name and time and datasets U, S_element, S_node; then flush.
+   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: time
+      real(wp), intent(in) :: u(:, :)        !< (2, nnode)
+      real(wp), intent(in) :: s_elem(:, :)   !< (4, nelem)
+      real(wp), intent(in) :: s_node(:, :)   !< (4, nnode)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: gname
+      character(len=24) :: buf
+      integer(hid_t) :: grp
+      integer :: hdferr
+
+      if (.not. check_open(self, 'write_step', error)) return
+      if (size(u, 1) /= 2 .or. size(s_elem, 1) /= 4 .or. size(s_node, 1) /= 4 &
+          .or. size(s_node, 2) /= size(u, 2) .or. self%nnode < 0 &
+          .or. size(u, 2) /= self%nnode .or. size(s_elem, 2) /= self%nelem) then
+         call fatal_error(error, 'write_step: array shapes do not match the mesh written ('// &
+                          self%path//')', err_internal)
+         return
+      end if
+      if (istep < 0) then
+         call fatal_error(error, 'write_step: negative step index ('//self%path//')', err_internal)
+         return
+      end if
+      if (istep <= 9999) then
+         write (buf, '(i4.4)') istep
+      else
+         write (buf, '(i0)') istep
+      end if
+      gname = '/steps/'//trim(buf)
+      call h5gcreate_f(self%file, gname, grp, hdferr)
+      if (failed(self, hdferr, 'creating group '//gname, error)) return
+      call put_string_attribute(self, grp, 'name', name, error)
+      if (.not. allocated(error)) call put_real_attribute(self, grp, 'time', time, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'U', shape(u, hsize_t), u, error)
+      if (.not. allocated(error)) &
+         call put_real(self, grp, 'S_element', shape(s_elem, hsize_t), s_elem, error)
+      if (.not. allocated(error)) &
+         call put_real(self, grp, 'S_node', shape(s_node, hsize_t), s_node, error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group '//gname, error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing after '//gname, error)) return
+   end subroutine h5_write_step
+
+   !> Close the file (nothing if not open).  Without `error`, a failure to close is
+   !> ignored: use the argument where the file's completeness matters.
+   subroutine h5_close(self, error)
+      class(h5_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out), optional :: error
+      integer :: hdferr
+      type(error_t), allocatable :: err
+      if (self%file < 0) return
+      call h5fclose_f(self%file, hdferr)
+      self%file = -1
+      if (failed(self, hdferr, 'closing the file', err)) then
+         if (present(error)) call move_alloc(err, error)
+      end if
+   end subroutine h5_close
+
+   !> True between a successful `open` and `close`.
+   pure logical function h5_is_open(self)
+      class(h5_writer_t), intent(in) :: self
+      h5_is_open = self%file >= 0
+   end function h5_is_open
+
+   !> A writer going out of scope closes its file.
+   subroutine h5_final(self)
+      type(h5_writer_t), intent(inout) :: self
+      call h5_close(self)
+   end subroutine h5_final
+
+   ! ---------------------------------------------------------------- helpers
+
+   !> True (and `error` set) when an HDF5 call returned a negative code.
+   logical function failed(self, hdferr, what, error)
+      class(h5_writer_t), intent(in) :: self
+      integer, intent(in) :: hdferr
+      character(len=*), intent(in) :: what
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=16) :: code
+      failed = hdferr < 0
+      if (.not. failed) return
+      write (code, '(i0)') hdferr
+      call fatal_error(error, 'HDF5 error (code '//trim(code)//') '//what//' in '''// &
+                       self%path//'''', err_io)
+   end function failed
+
+   logical function check_open(self, what, error)
+      class(h5_writer_t), intent(in) :: self
+      character(len=*), intent(in) :: what
+      type(error_t), allocatable, intent(out) :: error
+      check_open = self%file >= 0
+      if (.not. check_open) call fatal_error(error, 'h5_writer_t%'//what// &
+                                             ': no results file is open', err_internal)
+   end function check_open
+
+   !> Create dataset `name` under `loc` with the given file type and shape
+   !> (Fortran order; h5py shows it reversed) and write `buf` of type `mem_type`.
+   subroutine put_dataset(self, loc, name, file_type, mem_type, dims, buf, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc, file_type, mem_type
+      character(len=*), intent(in) :: name
+      integer(hsize_t), intent(in) :: dims(:)
+      type(c_ptr), intent(in) :: buf
+      type(error_t), allocatable, intent(inout) :: error
+      integer(hid_t) :: space, dset
+      integer :: hdferr, ignore
+      call h5screate_simple_f(size(dims), dims, space, hdferr)
+      if (failed(self, hdferr, 'creating the dataspace of '//name, error)) return
+      call h5dcreate_f(loc, name, file_type, space, dset, hdferr)
+      if (failed(self, hdferr, 'creating dataset '//name, error)) then
+         call h5sclose_f(space, ignore)
+         return
+      end if
+      ! a zero-size dataset has nothing to write (and no address to write from)
+      if (product(dims) > 0) then
+         call h5dwrite_f(dset, mem_type, buf, hdferr)
+         if (failed(self, hdferr, 'writing dataset '//name, error)) then
+            call h5dclose_f(dset, ignore)
+            call h5sclose_f(space, ignore)
+            return
+         end if
+      end if
+      call h5dclose_f(dset, hdferr)
+      if (failed(self, hdferr, 'closing dataset '//name, error)) then
+         call h5sclose_f(space, ignore)
+         return
+      end if
+      call h5sclose_f(space, hdferr)
+      if (failed(self, hdferr, 'closing the dataspace of '//name, error)) return
+   end subroutine put_dataset
+
+   ! The typed writers take the data as assumed-size arrays: any rank binds by
+   ! sequence association, and gfortran passes contiguous actuals without a copy
+   ! (a `contiguous` assumed-shape dummy makes gfortran 12 copy every time).
+
+   !> Float64 dataset of Fortran shape `dims` from `a`.
+   subroutine put_real(self, loc, name, dims, a, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer(hsize_t), intent(in) :: dims(:)
+      real(wp), intent(in), target :: a(*)
+      type(error_t), allocatable, intent(inout) :: error
+      type(c_ptr) :: buf
+      buf = c_null_ptr
+      if (product(dims) > 0) buf = c_loc(a(1))
+      call put_dataset(self, loc, name, H5T_IEEE_F64LE, h5kind_to_type(wp, H5_REAL_KIND), dims, &
+                       buf, error)
+   end subroutine put_real
+
+   !> Int32 dataset of Fortran shape `dims` from `a`.
+   subroutine put_int(self, loc, name, dims, a, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer(hsize_t), intent(in) :: dims(:)
+      integer(ip), intent(in), target :: a(*)
+      type(error_t), allocatable, intent(inout) :: error
+      type(c_ptr) :: buf
+      buf = c_null_ptr
+      if (product(dims) > 0) buf = c_loc(a(1))
+      call put_dataset(self, loc, name, H5T_STD_I32LE, h5kind_to_type(ip, H5_INTEGER_KIND), dims, &
+                       buf, error)
+   end subroutine put_int
+
+   !> Int64 dataset of Fortran shape `dims` from `a`.
+   subroutine put_i8(self, loc, name, dims, a, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer(hsize_t), intent(in) :: dims(:)
+      integer(i8), intent(in), target :: a(*)
+      type(error_t), allocatable, intent(inout) :: error
+      type(c_ptr) :: buf
+      buf = c_null_ptr
+      if (product(dims) > 0) buf = c_loc(a(1))
+      call put_dataset(self, loc, name, H5T_STD_I64LE, h5kind_to_type(i8, H5_INTEGER_KIND), dims, &
+                       buf, error)
+   end subroutine put_i8
+
+   !> Scalar attribute of `file_type` from `buf` of `mem_type`.
+   subroutine put_attribute(self, loc, name, file_type, mem_type, buf, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc, file_type, mem_type
+      character(len=*), intent(in) :: name
+      type(c_ptr), intent(in) :: buf
+      type(error_t), allocatable, intent(inout) :: error
+      integer(hid_t) :: space, attr
+      integer :: hdferr, ignore
+      call h5screate_f(H5S_SCALAR_F, space, hdferr)
+      if (failed(self, hdferr, 'creating the dataspace of attribute '//name, error)) return
+      call h5acreate_f(loc, name, file_type, space, attr, hdferr)
+      if (failed(self, hdferr, 'creating attribute '//name, error)) then
+         call h5sclose_f(space, ignore)
+         return
+      end if
+      call h5awrite_f(attr, mem_type, buf, hdferr)
+      if (failed(self, hdferr, 'writing attribute '//name, error)) then
+         call h5aclose_f(attr, ignore)
+         call h5sclose_f(space, ignore)
+         return
+      end if
+      call h5aclose_f(attr, hdferr)
+      if (failed(self, hdferr, 'closing attribute '//name, error)) then
+         call h5sclose_f(space, ignore)
+         return
+      end if
+      call h5sclose_f(space, hdferr)
+      if (failed(self, hdferr, 'closing the dataspace of attribute '//name, error)) return
+   end subroutine put_attribute
+
+   subroutine put_real_attribute(self, loc, name, value, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: value
+      type(error_t), allocatable, intent(inout) :: error
+      real(wp), target :: buf
+      buf = value
+      call put_attribute(self, loc, name, H5T_IEEE_F64LE, h5kind_to_type(wp, H5_REAL_KIND), &
+                         c_loc(buf), error)
+   end subroutine put_real_attribute
+
+   subroutine put_int_attribute(self, loc, name, value, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer(ip), intent(in) :: value
+      type(error_t), allocatable, intent(inout) :: error
+      integer(ip), target :: buf
+      buf = value
+      call put_attribute(self, loc, name, H5T_STD_I32LE, h5kind_to_type(ip, H5_INTEGER_KIND), &
+                         c_loc(buf), error)
+   end subroutine put_int_attribute
+
+   !> Fixed-length, null-padded ASCII string attribute of exactly len(value)
+   !> characters (h5py returns it as `bytes`).  An empty value is stored as one
+   !> NUL, which null padding reads back as the empty string.
+   subroutine put_string_attribute(self, loc, name, value, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name, value
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=1), allocatable, target :: buf(:)
+      integer(hid_t) :: stype
+      integer :: hdferr, ignore, k
+      allocate (buf(max(1, len(value))))
+      buf(1) = achar(0)
+      do k = 1, len(value)
+         buf(k) = value(k:k)
+      end do
+      call h5tcopy_f(H5T_C_S1, stype, hdferr)
+      if (failed(self, hdferr, 'creating the string type of attribute '//name, error)) return
+      call h5tset_size_f(stype, int(size(buf), size_t), hdferr)
+      if (.not. failed(self, hdferr, 'sizing the string type of attribute '//name, error)) then
+         call h5tset_strpad_f(stype, H5T_STR_NULLPAD_F, hdferr)
+         if (.not. failed(self, hdferr, 'padding the string type of attribute '//name, error)) &
+            call put_attribute(self, loc, name, stype, stype, c_loc(buf), error)
+      end if
+      if (allocated(error)) then
+         call h5tclose_f(stype, ignore)
+         return
+      end if
+      call h5tclose_f(stype, hdferr)
+      if (failed(self, hdferr, 'closing the string type of attribute '//name, error)) return
+   end subroutine put_string_attribute
+end module vemcontact_output_hdf5

@@ -1,0 +1,210 @@
+!> ParaView collection (.pvd) of the .vtu files of the steps written so far.
+!> The driver rewrites it after every step, through a temporary file and an
+!> atomic rename, so a run that stops part way leaves a valid collection of the
+!> completed steps.  File names are stored relative to the .pvd's folder so that
+!> the result folder can be moved or copied as a whole.
+module vemcontact_output_pvd
+   use vemcontact_kinds, only: wp
+   use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
+   use vemcontact_model, only: string_t
+   use vemcontact_output_vtu, only: replace_file
+   implicit none
+   private
+
+   public :: write_pvd, relative_path
+
+contains
+
+   !> Write the collection `path` with one DataSet per entry of `files` at `times`.
+   !> `files` are paths as the program uses them (absolute, or relative to the
+   !> working directory like `path`); they are converted to paths relative to
+   !> the folder of `path`.
+   subroutine write_pvd(path, files, times, error)
+      character(len=*), intent(in) :: path
+      type(string_t), intent(in) :: files(:)
+      real(wp), intent(in) :: times(:)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: tmp, dir, rel, text
+      character(len=32) :: tbuf
+      character(len=512) :: msg
+      character(len=1), parameter :: nl = new_line('a')
+      integer :: k, unit, ios
+      logical :: ok
+
+      if (size(files) /= size(times)) then
+         call fatal_error(error, 'write_pvd: files and times differ in length ('//path//')', &
+                          err_internal)
+         return
+      end if
+      dir = dirname(path)
+      text = '<?xml version="1.0"?>'//nl &
+             //'<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">'//nl &
+             //'<Collection>'//nl
+      do k = 1, size(files)
+         call relative_path(files(k)%s, dir, rel, ok)
+         if (.not. ok) then
+            call fatal_error(error, 'write_pvd: cannot express '''//files(k)%s &
+                             //''' relative to the folder of '''//path//'''', err_internal)
+            return
+         end if
+         ! 17 significant digits: the time reads back as the same double
+         write (tbuf, '(es24.16e3)') times(k)
+         text = text//'<DataSet timestep="'//trim(adjustl(tbuf))//'" group="" part="0" file="' &
+                //xml_escape(rel)//'"/>'//nl
+      end do
+      text = text//'</Collection>'//nl//'</VTKFile>'//nl
+
+      tmp = path//'.tmp'
+      open (newunit=unit, file=tmp, access='stream', form='unformatted', status='replace', &
+            action='write', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call fatal_error(error, 'cannot open '''//tmp//''' for writing: '//trim(msg), err_io)
+         return
+      end if
+      write (unit, iostat=ios, iomsg=msg) text
+      if (ios /= 0) then
+         close (unit, status='delete', iostat=ios)
+         call fatal_error(error, 'error while writing '''//tmp//''': '//trim(msg), err_io)
+         return
+      end if
+      close (unit, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call fatal_error(error, 'cannot close '''//tmp//''': '//trim(msg), err_io)
+         return
+      end if
+      call replace_file(tmp, path, error)
+   end subroutine write_pvd
+
+   !> `file` expressed relative to the folder `dir`, lexically ('.' and '..'
+   !> resolved, no file system access).  Both absolute or both relative (to the
+   !> same working directory) works; an absolute `file` with a relative `dir` is
+   !> returned unchanged (valid from anywhere).  `ok` is false when the answer
+   !> needs names the paths do not contain: relative `file` with absolute `dir`,
+   !> or `dir` climbing above the common part with '..'.
+   pure subroutine relative_path(file, dir, rel, ok)
+      character(len=*), intent(in) :: file, dir
+      character(len=:), allocatable, intent(out) :: rel
+      logical, intent(out) :: ok
+      type(string_t), allocatable :: fc(:), dc(:)
+      logical :: fabs, dabs
+      integer :: c, k
+      fabs = is_absolute(file)
+      dabs = is_absolute(dir)
+      ok = .true.
+      if (fabs .and. .not. dabs) then
+         rel = file
+         return
+      end if
+      if (dabs .and. .not. fabs) then
+         ok = .false.
+         rel = file
+         return
+      end if
+      call split_path(file, fabs, fc)
+      call split_path(dir, dabs, dc)
+      c = 0
+      do while (c < min(size(fc) - 1, size(dc)))
+         if (fc(c + 1)%s /= dc(c + 1)%s) exit
+         c = c + 1
+      end do
+      rel = ''
+      do k = c + 1, size(dc)
+         if (dc(k)%s == '..') then
+            ok = .false.
+            rel = file
+            return
+         end if
+         rel = rel//'../'
+      end do
+      do k = c + 1, size(fc)
+         rel = rel//fc(k)%s
+         if (k < size(fc)) rel = rel//'/'
+      end do
+   end subroutine relative_path
+
+   pure logical function is_absolute(path)
+      character(len=*), intent(in) :: path
+      is_absolute = .false.
+      if (len(path) > 0) is_absolute = path(1:1) == '/'
+   end function is_absolute
+
+   !> Folder part of a path ('' for a bare file name).
+   pure function dirname(path) result(d)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: d
+      integer :: k
+      k = index(path, '/', back=.true.)
+      if (k == 0) then
+         d = ''
+      else if (k == 1) then
+         d = '/'
+      else
+         d = path(1:k - 1)
+      end if
+   end function dirname
+
+   !> Components of a path with '', '.' and resolvable '..' removed; leading
+   !> '..' of a relative path are kept, '..' at the root of an absolute one dropped.
+   pure subroutine split_path(path, absolute, comps)
+      character(len=*), intent(in) :: path
+      logical, intent(in) :: absolute
+      type(string_t), allocatable, intent(out) :: comps(:)
+      type(string_t), allocatable :: work(:)
+      integer :: i, j, n
+      allocate (work(len(path) + 1))
+      n = 0
+      i = 1
+      do while (i <= len(path))
+         j = index(path(i:), '/')
+         if (j == 0) then
+            j = len(path) + 1
+         else
+            j = i + j - 1
+         end if
+         if (j > i) then
+            if (path(i:j - 1) == '..') then
+               if (n > 0) then
+                  if (work(n)%s /= '..') then
+                     n = n - 1
+                  else
+                     n = n + 1
+                     work(n)%s = '..'
+                  end if
+               else if (.not. absolute) then
+                  n = n + 1
+                  work(n)%s = '..'
+               end if
+            else if (path(i:j - 1) /= '.') then
+               n = n + 1
+               work(n)%s = path(i:j - 1)
+            end if
+         end if
+         i = j + 1
+      end do
+      comps = work(1:n)
+   end subroutine split_path
+
+   !> Escape the five XML special characters for use in an attribute value.
+   pure function xml_escape(s) result(e)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: e
+      integer :: k
+      e = ''
+      do k = 1, len(s)
+         select case (s(k:k))
+         case ('&')
+            e = e//'&amp;'
+         case ('<')
+            e = e//'&lt;'
+         case ('>')
+            e = e//'&gt;'
+         case ('"')
+            e = e//'&quot;'
+         case ('''')
+            e = e//'&apos;'
+         case default
+            e = e//s(k:k)
+         end select
+      end do
+   end function xml_escape
+end module vemcontact_output_pvd

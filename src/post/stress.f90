@@ -1,0 +1,64 @@
+!> Stress post-processing: nodal averaging of element stresses, principal
+!> stresses and the von Mises equivalent stress.  Stress vectors are
+!> `(xx, yy, zz, xy)`, tension positive.
+module vemcontact_post_stress
+   use vemcontact_kinds, only: wp, ip
+   use vemcontact_model, only: model_t
+   implicit none
+   private
+
+   public :: nodal_average, principal_stresses
+
+contains
+
+   !> Nodal stresses as the unweighted mean of the stresses of the elements
+   !> that contain the node; a node in no element gets 0.
+   !>
+   !> Unweighted, as CalculiX averages its extrapolated element values: each
+   !> element's (constant, projected) stress is an estimate of equal standing for
+   !> the stress at its vertices.  Area weighting would let a large element,
+   !> whose centroid is far from the node and whose constant stress is therefore
+   !> the poorer estimate there, dominate its small neighbours; on graded VEM
+   !> meshes (agglomerated polygons next to fine cells) that is the wrong way round.
+   !> The average is per node, so nodes that are not shared between bodies never
+   !> mix the bodies' stresses.
+   subroutine nodal_average(model, s_elem, s_node)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: s_elem(:, :)    !< (4, nelem)
+      real(wp), intent(out) :: s_node(:, :)   !< (4, nnode)
+      integer(ip), allocatable :: count(:)
+      integer(ip) :: e, k, n
+      allocate (count(model%nnode), source=0_ip)
+      s_node = 0.0_wp
+      do e = 1, model%nelem
+         do k = model%elem_ptr(e), model%elem_ptr(e + 1) - 1
+            n = model%elem_conn(k)
+            s_node(:, n) = s_node(:, n) + s_elem(:, e)
+            count(n) = count(n) + 1_ip
+         end do
+      end do
+      do n = 1, model%nnode
+         if (count(n) > 0) s_node(:, n) = s_node(:, n)/real(count(n), wp)
+      end do
+   end subroutine nodal_average
+
+   !> In-plane principal stresses `s1 >= s3` of `(xx, yy, xy)` and the von Mises
+   !> stress of the full state including `zz` (non-zero in plane strain).
+   !> `s1`/`s3` deliberately leave out `zz`: they are the extreme normal stresses
+   !> in the model plane, the quantity contact and crack checks look at; `zz` is
+   !> available on its own in the stress vector.
+   pure subroutine principal_stresses(s, s1, s3, mises)
+      real(wp), intent(in) :: s(4)
+      real(wp), intent(out) :: s1, s3, mises
+      real(wp) :: centre, radius, dxy, dyz, dzx
+      centre = 0.5_wp*(s(1) + s(2))
+      ! hypot avoids overflow/underflow of the squares for extreme magnitudes
+      radius = hypot(0.5_wp*(s(1) - s(2)), s(4))
+      s1 = centre + radius
+      s3 = centre - radius
+      dxy = s(1) - s(2)
+      dyz = s(2) - s(3)
+      dzx = s(3) - s(1)
+      mises = sqrt(0.5_wp*(dxy*dxy + dyz*dyz + dzx*dzx) + 3.0_wp*s(4)*s(4))
+   end subroutine principal_stresses
+end module vemcontact_post_stress
