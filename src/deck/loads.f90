@@ -1,0 +1,468 @@
+!> Handlers of the step and load keywords: *STEP, *STATIC, *END STEP, *BOUNDARY,
+!> *CLOAD, *DLOAD, and of *HEADING.
+!> Entries are kept in deck order; with OP=NEW the entries of that kind given
+!> earlier in the same step are dropped and the step's `*_new` flag is set, which
+!> tells the driver to drop those of earlier steps too (CalculiX semantics).
+module vemcontact_deck_loads
+   use vemcontact_kinds, only: wp, ip
+   use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure
+   use vemcontact_deck_state, only: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, here, &
+                                    err_here, err_at, field, get_int, get_real, push_item, push_dof, &
+                                    push_dload, node_index, elem_index, get_set, set_suggestion, &
+                                    ref_kind, ref_id, ref_name, loc_str, tidy_items
+   use vemcontact_deck_lines, only: advance
+   use vemcontact_deck_source, only: line_data
+   use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param, has_param, to_upper, &
+                                     squeeze, int_str
+   use vemcontact_deck_numbers, only: parse_int, num_ok
+   implicit none
+   private
+
+   public :: read_heading, read_boundary, read_cload, read_dload, start_step, read_static, end_step
+   public :: acc_to_step
+
+contains
+
+   !> *HEADING: the data lines are the heading text (joined with new lines).
+   subroutine read_heading(p, model)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         if (allocated(model%heading)) then
+            model%heading = model%heading//new_line('a')//p%src%text(1:p%src%length)
+         else
+            model%heading = p%src%text(1:p%src%length)
+         end if
+      end do
+   end subroutine read_heading
+
+   !> Nodes named by field k (a node id or a node set) into `nodes`; ok = .false. if reported.
+   subroutine field_nodes(p, model, k, nodes, ok)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      integer, intent(in) :: k
+      type(item_list_t), intent(inout) :: nodes
+      logical, intent(out) :: ok
+      integer :: kind, kset
+      integer(ip) :: id, idx
+      character(len=:), allocatable :: name
+      nodes%n = 0
+      ok = .false.
+      if (p%f%n < k) then
+         call err_here(p, 'missing node id or node set name')
+         return
+      end if
+      call ref_kind(p, k, kind, id, 'node')
+      if (kind == ref_id) then
+         idx = node_index(p, model, id)
+         if (idx == 0) then
+            call err_here(p, 'undefined node '//int_str(id))
+            return
+         end if
+         call push_item(nodes, idx)
+      else if (kind == ref_name) then
+         name = to_upper(squeeze(field(p, k)))
+         call get_set(model%nsets, p%nset_items, p%nnset, name, here(p), .false., kset)
+         if (kset == 0) then
+            call err_here(p, 'undefined node set '//name, set_suggestion(model%nsets, p%nnset, name))
+            return
+         end if
+         call tidy_items(p%nset_items(kset))
+         do id = 1, p%nset_items(kset)%n
+            call push_item(nodes, p%nset_items(kset)%a(id))
+         end do
+      else
+         return
+      end if
+      ok = .true.
+   end subroutine field_nodes
+
+   !> Elements named by field k (an element id or an element set).
+   subroutine field_elems(p, model, k, elems, ok)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      integer, intent(in) :: k
+      type(item_list_t), intent(inout) :: elems
+      logical, intent(out) :: ok
+      integer :: kind, kset
+      integer(ip) :: id, idx
+      character(len=:), allocatable :: name
+      elems%n = 0
+      ok = .false.
+      if (p%f%n < k) then
+         call err_here(p, 'missing element id or element set name')
+         return
+      end if
+      call ref_kind(p, k, kind, id, 'element')
+      if (kind == ref_id) then
+         idx = elem_index(p, model, id)
+         if (idx == 0) then
+            call err_here(p, 'undefined element '//int_str(id))
+            return
+         end if
+         call push_item(elems, idx)
+      else if (kind == ref_name) then
+         name = to_upper(squeeze(field(p, k)))
+         call get_set(model%elsets, p%elset_items, p%nelset, name, here(p), .false., kset)
+         if (kset == 0) then
+            call err_here(p, 'undefined element set '//name, set_suggestion(model%elsets, p%nelset, name))
+            return
+         end if
+         call tidy_items(p%elset_items(kset))
+         do id = 1, p%elset_items(kset)%n
+            call push_item(elems, p%elset_items(kset)%a(id))
+         end do
+      else
+         return
+      end if
+      ok = .true.
+   end subroutine field_elems
+
+   !> OP=NEW/MOD of a load keyword; `is_new` true for NEW, reported outside a step.
+   subroutine get_op(p, kw, kname, is_new)
+      type(deck_parser_t), intent(inout) :: p
+      type(keyword_line_t), intent(in) :: kw
+      character(len=*), intent(in) :: kname
+      logical, intent(out) :: is_new
+      character(len=:), allocatable :: op
+      logical :: found
+      call get_param(kw, 'OP', op, found)
+      is_new = op == 'NEW'
+      if (is_new .and. .not. p%in_step) then
+         call err_here(p, 'OP=NEW on '//kname//' is only meaningful inside a *STEP', &
+                       'conditions given before the first *STEP hold in every step')
+         is_new = .false.
+      end if
+   end subroutine get_op
+
+   !> *BOUNDARY [, OP=MOD|NEW]; data lines: node or node set, first dof [, last dof [, value]].
+   !> Dof 3 (z) is accepted and ignored: CalculiX decks for plane elements often fix 1 to 3.
+   subroutine read_boundary(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      logical :: is_new, ok
+      integer(ip) :: dof1, dof2
+      integer :: i, dof
+      real(wp) :: val
+      type(item_list_t) :: nodes
+      call get_op(p, kw, '*BOUNDARY', is_new)
+      if (is_new) then
+         p%cur%bnew = .true.
+         p%cur%nb = 0
+      end if
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         call split_fields(p%src%text(1:p%src%length), p%f)
+         if (p%f%n > 4) then
+            call err_here(p, 'too many fields on a *BOUNDARY data line: expected node or set, '// &
+                          'first dof, last dof, value')
+            cycle
+         end if
+         call field_nodes(p, model, 1, nodes, ok)
+         if (.not. ok) cycle
+         call get_int(p, 2, 'first degree of freedom', dof1, ok)
+         if (.not. ok) cycle
+         dof2 = dof1
+         if (p%f%n >= 3) then
+            if (p%f%last(3) >= p%f%first(3)) then
+               call get_int(p, 3, 'last degree of freedom', dof2, ok)
+               if (.not. ok) cycle
+            end if
+         end if
+         call get_real(p, 4, 'prescribed value', val, ok)
+         if (.not. ok) cycle
+         if (.not. dofs_ok(p, dof1, dof2)) cycle
+         do i = 1, nodes%n
+            do dof = dof1, min(int(dof2), 2)
+               if (p%in_step) then
+                  call push_dof(p%cur%boundary, p%cur%nb, dof_value_t(nodes%a(i), dof, val))
+               else
+                  call push_dof(p%init%boundary, p%init%nb, dof_value_t(nodes%a(i), dof, val))
+               end if
+            end do
+         end do
+      end do
+   end subroutine read_boundary
+
+   !> Check a dof range; dofs are 1 (x), 2 (y) and 3 (z, ignored).
+   function dofs_ok(p, dof1, dof2) result(ok)
+      type(deck_parser_t), intent(inout) :: p
+      integer(ip), intent(in) :: dof1, dof2
+      logical :: ok
+      ok = .false.
+      if (dof1 < 1 .or. dof2 < 1) then
+         call err_here(p, 'degrees of freedom are numbered from 1, found '//int_str(min(dof1, dof2)))
+      else if (dof2 < dof1) then
+         call err_here(p, 'last degree of freedom '//int_str(dof2)//' is smaller than the first '// &
+                       int_str(dof1))
+      else if (dof2 > 3) then
+         call err_here(p, 'degree of freedom '//int_str(dof2)//' does not exist in a 2D model', &
+                       'dofs are 1 (x) and 2 (y); 3 (z) is accepted and ignored')
+      else
+         ok = .true.
+      end if
+   end function dofs_ok
+
+   !> *CLOAD [, OP=MOD|NEW]; data lines: node or node set, dof, value (at each node of a set).
+   subroutine read_cload(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      logical :: is_new, ok
+      integer(ip) :: dof
+      integer :: i
+      real(wp) :: val
+      type(item_list_t) :: nodes
+      call get_op(p, kw, '*CLOAD', is_new)
+      if (is_new) then
+         p%cur%cnew = .true.
+         p%cur%nc = 0
+      end if
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         call split_fields(p%src%text(1:p%src%length), p%f)
+         if (p%f%n > 3) then
+            call err_here(p, 'too many fields on a *CLOAD data line: expected node or set, dof, value')
+            cycle
+         end if
+         call field_nodes(p, model, 1, nodes, ok)
+         if (.not. ok) cycle
+         call get_int(p, 2, 'degree of freedom', dof, ok)
+         if (.not. ok) cycle
+         call get_real(p, 3, 'load value', val, ok)
+         if (.not. ok) cycle
+         if (.not. dofs_ok(p, dof, dof)) cycle
+         if (dof == 3) then
+            if (abs(val) > 0.0_wp) call err_here(p, 'a force in z (dof 3) cannot be applied in a 2D model')
+            cycle
+         end if
+         do i = 1, nodes%n
+            call push_dof(p%cur%cload, p%cur%nc, dof_value_t(nodes%a(i), int(dof), val))
+         end do
+      end do
+   end subroutine read_cload
+
+   !> *DLOAD [, OP=MOD|NEW]; data lines: element or element set, GRAV, g, dx, dy [, dz = 0]
+   !> or element or element set, P<k>, p (pressure on side k).
+   subroutine read_dload(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      logical :: is_new, ok
+      integer :: i, side, stat, nn
+      integer(ip) :: iside, e
+      real(wp) :: mag, d(3), dnorm
+      character(len=:), allocatable :: label
+      type(item_list_t) :: elems
+      type(dload_t) :: rec
+      call get_op(p, kw, '*DLOAD', is_new)
+      if (is_new) then
+         p%cur%dnew = .true.
+         p%cur%nd = 0
+      end if
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         call split_fields(p%src%text(1:p%src%length), p%f)
+         call field_elems(p, model, 1, elems, ok)
+         if (.not. ok) cycle
+         label = to_upper(squeeze(field(p, 2)))
+         if (label == 'GRAV') then
+            if (p%f%n > 6) then
+               call err_here(p, 'too many fields on a GRAV data line: expected element or set, GRAV, g, dx, dy, dz')
+               cycle
+            end if
+            call get_real(p, 3, 'gravity magnitude', mag, ok, required=.true.)
+            if (ok) call get_real(p, 4, 'gravity direction x', d(1), ok)
+            if (ok) call get_real(p, 5, 'gravity direction y', d(2), ok)
+            if (ok) call get_real(p, 6, 'gravity direction z', d(3), ok)
+            if (.not. ok) cycle
+            if (abs(d(3)) > 0.0_wp) then
+               call err_here(p, 'gravity direction has a z component '//field(p, 6)// &
+                             ': it must lie in the x-y plane of a 2D model')
+               cycle
+            end if
+            dnorm = hypot(d(1), d(2))
+            if (.not. dnorm > 0.0_wp) then
+               call err_here(p, 'gravity direction (dx, dy) is zero', &
+                             'write e.g. "EALL, GRAV, 9810., 0., -1." for gravity along -y')
+               cycle
+            end if
+            rec = dload_t(kind=dload_grav, side=0, magnitude=mag, dir=d(1:2)/dnorm)
+            do i = 1, elems%n
+               rec%elem = elems%a(i)
+               call push_dload(p%cur%dload, p%cur%nd, rec)
+               call add_grav(p, elems%a(i))
+            end do
+         else if (len(label) >= 2 .and. label(1:1) == 'P') then
+            call parse_int(label(2:), iside, stat)
+            if (stat /= num_ok .or. iside < 1) then
+               call bad_label(label)
+               cycle
+            end if
+            if (p%f%n > 3) then
+               call err_here(p, 'too many fields on a pressure data line: expected element or set, P<k>, p')
+               cycle
+            end if
+            call get_real(p, 3, 'pressure', mag, ok, required=.true.)
+            if (.not. ok) cycle
+            side = iside
+            ok = .true.
+            do i = 1, elems%n
+               e = elems%a(i)
+               nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
+               if (side > nn) then
+                  call err_here(p, 'element '//int_str(model%elem_id(e))//' has '//int_str(nn)// &
+                                ' sides, so there is no side '//label, &
+                                'side k runs from node k to node k+1 of the element')
+                  ok = .false.
+                  exit
+               end if
+            end do
+            if (.not. ok) cycle
+            rec = dload_t(kind=dload_pressure, side=side, magnitude=mag, dir=0.0_wp)
+            do i = 1, elems%n
+               rec%elem = elems%a(i)
+               call push_dload(p%cur%dload, p%cur%nd, rec)
+            end do
+         else
+            call bad_label(label)
+         end if
+      end do
+   contains
+      subroutine bad_label(lab)
+         character(len=*), intent(in) :: lab
+         if (len(lab) == 0) then
+            call err_here(p, 'missing load label on a *DLOAD data line', &
+                          'labels are GRAV and P1, P2, ... (pressure on side k)')
+         else
+            call err_here(p, 'unsupported *DLOAD label '//lab, &
+                          'labels are GRAV and P1, P2, ... (pressure on side k)')
+         end if
+      end subroutine bad_label
+   end subroutine read_dload
+
+   subroutine add_grav(p, e)
+      type(deck_parser_t), intent(inout) :: p
+      integer(ip), intent(in) :: e
+      type(grav_ref_t), allocatable :: t(:)
+      if (.not. allocated(p%grav)) allocate (p%grav(16))
+      if (p%ngrav == size(p%grav)) then
+         allocate (t(2*p%ngrav))
+         t(1:p%ngrav) = p%grav(1:p%ngrav)
+         call move_alloc(t, p%grav)
+      end if
+      p%ngrav = p%ngrav + 1
+      p%grav(p%ngrav) = grav_ref_t(elem=e, loc=here(p))
+   end subroutine add_grav
+
+   !> *STEP [, NLGEOM=NO] [, INC=n] [, NAME=name] (no data lines).
+   subroutine start_step(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      character(len=:), allocatable :: val
+      logical :: found
+      if (p%in_step) then
+         call err_here(p, '*STEP inside a step: the step started at '//loc_str(p, p%step_loc)// &
+                       ' has no *END STEP')
+         call end_step(p, model)
+      end if
+      call get_param(kw, 'NLGEOM', val, found)
+      if (found .and. val /= 'NO') then
+         call err_here(p, 'NLGEOM (geometric nonlinearity) is not supported: vemcontact is a '// &
+                       'small-strain code', 'remove NLGEOM or write NLGEOM=NO')
+      end if
+      p%in_step = .true.
+      p%static_seen = .false.
+      p%step_loc = here(p)
+      p%cur = step_acc_t()
+      call get_param(kw, 'NAME', val, found)
+      if (found) then
+         p%cur%name = val
+      else
+         p%cur%name = 'Step-'//int_str(p%nstep + 1)
+      end if
+      if (has_param(kw, 'INC')) continue   ! accepted: a linear step needs one increment
+   end subroutine start_step
+
+   !> *STATIC [, SOLVER=...]; optional data line (time increments) checked and ignored.
+   subroutine read_static(p)
+      type(deck_parser_t), intent(inout) :: p
+      integer :: k, nline
+      real(wp) :: v
+      logical :: ok
+      if (p%static_seen) call err_here(p, 'second *STATIC in the step started at '//loc_str(p, p%step_loc))
+      p%static_seen = .true.
+      nline = 0
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         nline = nline + 1
+         if (nline == 2) call err_here(p, '*STATIC takes at most one data line')
+         if (nline > 1) cycle
+         call split_fields(p%src%text(1:p%src%length), p%f)
+         if (p%f%n > 4) then
+            call err_here(p, 'too many fields on the *STATIC data line: expected at most 4 time values')
+            cycle
+         end if
+         do k = 1, p%f%n
+            call get_real(p, k, 'time increment value', v, ok)
+            if (.not. ok) exit
+         end do
+      end do
+   end subroutine read_static
+
+   !> *END STEP, or the implicit end of a step: store the step in the model.
+   subroutine end_step(p, model)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(step_t), allocatable :: t(:)
+      integer :: k
+      if (.not. p%static_seen) then
+         call err_at(p, p%step_loc, 'the step has no procedure', 'add *STATIC inside the step')
+      end if
+      allocate (t(p%nstep + 1))
+      do k = 1, p%nstep
+         call move_step(model%steps(k), t(k))
+      end do
+      p%nstep = p%nstep + 1
+      call acc_to_step(p%cur, t(p%nstep))
+      t(p%nstep)%loc = p%step_loc
+      call move_alloc(t, model%steps)
+      p%in_step = .false.
+      p%cur = step_acc_t()
+   end subroutine end_step
+
+   subroutine move_step(a, b)
+      type(step_t), intent(inout) :: a
+      type(step_t), intent(out) :: b
+      call move_alloc(a%name, b%name)
+      b%boundary_new = a%boundary_new
+      b%cload_new = a%cload_new
+      b%dload_new = a%dload_new
+      call move_alloc(a%boundary, b%boundary)
+      call move_alloc(a%cload, b%cload)
+      call move_alloc(a%dload, b%dload)
+      b%loc = a%loc
+   end subroutine move_step
+
+   !> Exact-size lists of a step from the accumulator.
+   subroutine acc_to_step(acc, s)
+      type(step_acc_t), intent(in) :: acc
+      type(step_t), intent(inout) :: s
+      if (allocated(acc%name)) s%name = acc%name
+      s%boundary_new = acc%bnew
+      s%cload_new = acc%cnew
+      s%dload_new = acc%dnew
+      allocate (s%boundary(acc%nb), s%cload(acc%nc), s%dload(acc%nd))
+      if (acc%nb > 0) s%boundary = acc%boundary(1:acc%nb)
+      if (acc%nc > 0) s%cload = acc%cload(1:acc%nc)
+      if (acc%nd > 0) s%dload = acc%dload(1:acc%nd)
+   end subroutine acc_to_step
+end module vemcontact_deck_loads

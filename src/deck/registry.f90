@@ -1,0 +1,227 @@
+!> The one registry of deck keywords and their parameters.
+!> Everything the parser accepts is listed here: keyword names, where they may
+!> appear (model data, inside a step, anywhere), whether they take data lines,
+!> and each parameter with its kind, whether it is required and its allowed
+!> values.  `check_keyword` validates a keyword line against it, and
+!> docs/deck-reference.md documents the same table.
+module vemcontact_deck_registry
+   use vemcontact_deck_fields, only: keyword_line_t, to_upper, squeeze, edit_distance
+   implicit none
+   private
+
+   public :: keyword_spec_t, param_spec_t, keywords, params
+   public :: find_keyword, find_param, keyword_suggestion, param_suggestion, known_keyword_list
+   public :: is_calculix_keyword, allowed_value, param_list
+
+   !> Keyword ids (index into `keywords`).
+   integer, parameter, public :: kw_heading = 1, kw_include = 2, kw_node = 3, kw_element = 4, &
+                                 kw_nset = 5, kw_elset = 6, kw_material = 7, kw_elastic = 8, &
+                                 kw_density = 9, kw_solid_section = 10, kw_boundary = 11, &
+                                 kw_cload = 12, kw_dload = 13, kw_step = 14, kw_static = 15, &
+                                 kw_end_step = 16
+   !> Where a keyword may appear.
+   integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
+   integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
+   integer, parameter, public :: ctx_any = 3
+   !> Data lines.
+   integer, parameter, public :: data_none = 0, data_optional = 1, data_required = 2
+   !> Parameter kinds.
+   integer, parameter, public :: par_flag = 1      !< bare word, no value
+   integer, parameter, public :: par_value = 2     !< NAME=value
+   integer, parameter, public :: par_optvalue = 3  !< bare word or NAME=value
+   !> How a parameter value is stored.
+   integer, parameter, public :: val_name = 1      !< upper case, blanks removed
+   integer, parameter, public :: val_path = 2      !< kept as written
+   integer, parameter, public :: val_int = 3       !< positive integer
+
+   type :: keyword_spec_t
+      character(len=16) :: name      !< as written in decks, e.g. 'SOLID SECTION'
+      integer :: context
+      integer :: data
+   end type keyword_spec_t
+
+   type :: param_spec_t
+      integer :: keyword
+      character(len=16) :: name
+      integer :: kind
+      logical :: required
+      integer :: vkind
+      character(len=40) :: allowed   !< blank-separated allowed values, '' = any
+   end type param_spec_t
+
+   type(keyword_spec_t), parameter :: keywords(16) = [ &
+                                      keyword_spec_t('HEADING', ctx_model, data_optional), &
+                                      keyword_spec_t('INCLUDE', ctx_any, data_none), &
+                                      keyword_spec_t('NODE', ctx_model, data_optional), &
+                                      keyword_spec_t('ELEMENT', ctx_model, data_optional), &
+                                      keyword_spec_t('NSET', ctx_model, data_optional), &
+                                      keyword_spec_t('ELSET', ctx_model, data_optional), &
+                                      keyword_spec_t('MATERIAL', ctx_model, data_none), &
+                                      keyword_spec_t('ELASTIC', ctx_model, data_required), &
+                                      keyword_spec_t('DENSITY', ctx_model, data_required), &
+                                      keyword_spec_t('SOLID SECTION', ctx_model, data_optional), &
+                                      keyword_spec_t('BOUNDARY', ctx_any, data_optional), &
+                                      keyword_spec_t('CLOAD', ctx_step, data_optional), &
+                                      keyword_spec_t('DLOAD', ctx_step, data_optional), &
+                                      keyword_spec_t('STEP', ctx_model, data_none), &
+                                      keyword_spec_t('STATIC', ctx_step, data_optional), &
+                                      keyword_spec_t('END STEP', ctx_step, data_none)]
+
+   type(param_spec_t), parameter :: params(20) = [ &
+                                    param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
+                                    param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_element, 'ELSET', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_nset, 'NSET', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_nset, 'GENERATE', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_elset, 'ELSET', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_elset, 'GENERATE', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_material, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_elastic, 'TYPE', par_value, .false., val_name, 'ISO'), &
+                                    param_spec_t(kw_solid_section, 'ELSET', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_solid_section, 'MATERIAL', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_solid_section, 'FORMULATION', par_value, .false., val_name, 'VEM FEM'), &
+                                    param_spec_t(kw_boundary, 'OP', par_value, .false., val_name, 'MOD NEW'), &
+                                    param_spec_t(kw_cload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
+                                    param_spec_t(kw_dload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
+                                    param_spec_t(kw_static, 'SOLVER', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_step, 'NLGEOM', par_optvalue, .false., val_name, 'NO YES'), &
+                                    param_spec_t(kw_step, 'INC', par_value, .false., val_int, ''), &
+                                    param_spec_t(kw_step, 'NAME', par_value, .false., val_path, '')]
+
+   !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
+   character(len=24), parameter :: calculix_only(40) = [character(len=24) :: &
+                                   'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTACTPAIR', 'CONTROLS', &
+                                   'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', 'ELPRINT', &
+                                   'ELFILE', 'VISCO', 'EQUATION', 'EXPANSION', 'FILM', 'FREQUENCY', &
+                                   'FRICTION', 'HEATTRANSFER', 'INITIALCONDITIONS', 'KINEMATIC', &
+                                   'MPC', 'NODEFILE', 'NODEPRINT', 'NODEOUTPUT', 'ELEMENTOUTPUT', &
+                                   'ORIENTATION', 'OUTPUT', 'PLASTIC', 'RESTART', 'SHELLSECTION', &
+                                   'SPECIFICHEAT', 'SURFACE', 'SURFACEINTERACTION', 'SURFACEBEHAVIOR', &
+                                   'TEMPERATURE', 'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
+
+contains
+
+   !> Id of the keyword with squeezed upper-case name `name` (e.g. 'SOLIDSECTION'), 0 if unknown.
+   pure function find_keyword(name) result(id)
+      character(len=*), intent(in) :: name
+      integer :: id
+      do id = 1, size(keywords)
+         if (squeeze(keywords(id)%name) == name) return
+      end do
+      id = 0
+   end function find_keyword
+
+   !> The spec of parameter `name` of keyword `kw`; `found` false if not allowed.
+   pure subroutine find_param(kw, name, spec, found)
+      integer, intent(in) :: kw
+      character(len=*), intent(in) :: name
+      type(param_spec_t), intent(out) :: spec
+      logical, intent(out) :: found
+      integer :: k
+      found = .false.
+      spec = params(1)
+      do k = 1, size(params)
+         if (params(k)%keyword == kw .and. trim(params(k)%name) == name) then
+            spec = params(k)
+            found = .true.
+            return
+         end if
+      end do
+   end subroutine find_param
+
+   !> All parameters of keyword `kw`, "A, B, C" ('none' if it takes none).
+   pure function param_list(kw) result(s)
+      integer, intent(in) :: kw
+      character(len=:), allocatable :: s
+      integer :: k
+      s = ''
+      do k = 1, size(params)
+         if (params(k)%keyword == kw) call add(trim(params(k)%name))
+      end do
+      if (len(s) == 0) s = 'none'
+   contains
+      pure subroutine add(n)
+         character(len=*), intent(in) :: n
+         if (len(s) > 0) s = s//', '
+         s = s//n
+      end subroutine add
+   end function param_list
+
+   !> Whether `value` (upper case) is allowed for `spec`.
+   pure function allowed_value(spec, value) result(ok)
+      type(param_spec_t), intent(in) :: spec
+      character(len=*), intent(in) :: value
+      logical :: ok
+      ok = len_trim(spec%allowed) == 0 .or. len(value) == 0
+      if (ok) return
+      ok = index(' '//trim(spec%allowed)//' ', ' '//value//' ') > 0
+   end function allowed_value
+
+   !> "did you mean *X?" for an unknown keyword, else the list of known keywords.
+   pure function keyword_suggestion(name) result(help)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: help
+      integer :: k, d, best, kbest
+      best = huge(1)
+      kbest = 0
+      do k = 1, size(keywords)
+         d = edit_distance(name, squeeze(keywords(k)%name))
+         if (d < best) then
+            best = d
+            kbest = k
+         end if
+      end do
+      if (kbest > 0 .and. best <= max(1, len(name)/3)) then
+         help = 'did you mean *'//trim(keywords(kbest)%name)//'?'
+      else
+         help = 'known keywords are '//known_keyword_list()
+      end if
+   end function keyword_suggestion
+
+   !> "*HEADING, *INCLUDE, ..."
+   pure function known_keyword_list() result(s)
+      character(len=:), allocatable :: s
+      integer :: k
+      s = ''
+      do k = 1, size(keywords)
+         if (k > 1) s = s//', '
+         s = s//'*'//trim(keywords(k)%name)
+      end do
+   end function known_keyword_list
+
+   !> "did you mean X?" for an unknown parameter of keyword `kw`, else the allowed list.
+   pure function param_suggestion(kw, name) result(help)
+      integer, intent(in) :: kw
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: help
+      integer :: k, d, best
+      character(len=16) :: pbest
+      best = huge(1)
+      pbest = ''
+      do k = 1, size(params)
+         if (params(k)%keyword /= kw) cycle
+         d = edit_distance(name, trim(params(k)%name))
+         if (d < best) then
+            best = d
+            pbest = params(k)%name
+         end if
+      end do
+      if (len_trim(pbest) > 0 .and. best <= max(1, len(name)/3)) then
+         help = 'did you mean '//trim(pbest)//'?'
+      else
+         help = 'parameters of *'//trim(keywords(kw)%name)//': '//param_list(kw)
+      end if
+   end function param_suggestion
+
+   !> Whether `name` (squeezed, upper case) is a CalculiX keyword vemcontact lacks.
+   pure function is_calculix_keyword(name) result(yes)
+      character(len=*), intent(in) :: name
+      logical :: yes
+      integer :: k
+      yes = .false.
+      do k = 1, size(calculix_only)
+         if (squeeze(calculix_only(k)) == name) yes = .true.
+      end do
+   end function is_calculix_keyword
+end module vemcontact_deck_registry
