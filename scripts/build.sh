@@ -5,5 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 type=${1:-Release}
 dir=build; [ "$type" = Debug ] && dir=build-debug
-cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" -DVEMCONTACT_PYTHON="$PWD/.venv/bin/python" >/dev/null
+cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" -DVC_PYTHON="$PWD/.venv/bin/python" >/dev/null
 cmake --build "$dir"

@@ -1,6 +1,7 @@
 !> Command line of the vemcontact program.
 module vemcontact_app_cli
    use vemcontact_error, only: error_t, fatal_error, err_input
+   use vemcontact_driver_linear, only: ordering_auto, ordering_metis, ordering_cholmod
    implicit none
    private
 
@@ -8,8 +9,6 @@ module vemcontact_app_cli
 
    !> Version of the program (kept in one place).
    character(len=*), parameter, public :: vemcontact_version = '0.1.0'
-
-   integer, parameter, public :: ordering_auto = 0, ordering_metis = 1, ordering_cholmod = 2
 
    type :: cli_t
       character(len=:), allocatable :: deck      !< path of the input deck

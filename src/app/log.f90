@@ -1,7 +1,8 @@
 !> Run log: every line goes to the screen and to JOB.log; phase timings use the
 !> wall clock so that they add up to what the user waits for.
 module vemcontact_app_log
-   use vemcontact_kinds, only: wp, i8
+   use vemcontact_kinds, only: wp
+   use vemcontact_clock, only: wall_time
    use vemcontact_error, only: error_t, fatal_error, err_io
    use, intrinsic :: iso_fortran_env, only: output_unit
    implicit none
@@ -20,14 +21,6 @@ module vemcontact_app_log
    end type logger_t
 
 contains
-
-   !> Seconds since an arbitrary origin.
-   function wall_time() result(t)
-      real(wp) :: t
-      integer(i8) :: count, rate
-      call system_clock(count, rate)
-      t = real(count, wp)/real(rate, wp)
-   end function wall_time
 
    subroutine logger_open(self, path, error)
       class(logger_t), intent(inout) :: self

@@ -1,4 +1,69 @@
+!> The vemcontact program: command line, log, deck, analysis, exit status.
+!> Exit status: 0 success, 1 bad input, 2 file error, 3 model not solvable,
+!> 4 solver failure, 5 internal error.
 program vemcontact_main
+   use vemcontact_kinds, only: wp
+   use vemcontact_error, only: error_t
+   use vemcontact_model, only: model_t
+   use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
+   use vemcontact_app_log, only: logger_t
+   use vemcontact_clock, only: wall_time
+   use vemcontact_app_process, only: exit_process, make_directory
+   use vemcontact_deck_reader, only: read_deck
+   use vemcontact_driver_static, only: run_options_t, run_static
+   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
-   print '(a)', 'vemcontact: under construction'
+   type(cli_t) :: cli
+   type(error_t), allocatable :: error
+   type(logger_t) :: log
+   type(model_t) :: model
+   type(run_options_t) :: opts
+   real(wp) :: t0, tstart
+
+   call parse_command_line(cli, error)
+   if (allocated(error)) call fail(error)
+   if (cli%help) then
+      write (output_unit, '(a)') usage_text()
+      call exit_process(0)
+   end if
+   if (cli%version) then
+      write (output_unit, '(a)') version_text()
+      call exit_process(0)
+   end if
+
+   tstart = wall_time()
+   call make_directory(cli%out_dir, error)
+   if (allocated(error)) call fail(error)
+   log%quiet = cli%quiet
+   call log%open(cli%out_dir//'/'//cli%job//'.log', error)
+   if (allocated(error)) call fail(error)
+   call log%say(version_text()//': job '//cli%job//', deck '//cli%deck)
+
+   t0 = wall_time()
+   call read_deck(cli%deck, model, error)
+   if (allocated(error)) call fail(error)
+   call log%phase('read', wall_time() - t0)
+
+   opts%out_dir = cli%out_dir
+   opts%job = cli%job
+   opts%ordering = cli%ordering
+   opts%write_matrix = cli%write_matrix
+   call run_static(model, opts, log, error)
+   if (allocated(error)) call fail(error)
+   call log%phase('total', wall_time() - tstart)
+   call log%close()
+   call exit_process(0)
+
+contains
+
+   !> Report the error on stderr and in the log, then end with its status.
+   subroutine fail(err)
+      type(error_t), intent(in) :: err
+      write (error_unit, '(a)') err%message
+      if (log%unit >= 0) then
+         write (log%unit, '(a)') err%message
+         call log%close()
+      end if
+      call exit_process(err%code)
+   end subroutine fail
 end program vemcontact_main

@@ -3,45 +3,68 @@
 !> (so the matrix stays well scaled) and its right-hand side set to diagonal * value;
 !> the known values move to the right-hand side of the free rows.  The matrix
 !> then depends only on which dofs are fixed, not on their values, so a step that
-!> only changes values reuses the factorization.
+!> only changes values reuses the factorization (it calls constrain_rhs alone).
 module vemcontact_driver_dirichlet
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_sparse_matrix, only: sym_csc_t
    implicit none
    private
 
-   public :: apply_dirichlet
+   public :: apply_dirichlet, constrain_rhs, constrain_matrix
 
 contains
 
-   !> `a` is modified in place (pass a copy of the stiffness); `f` becomes the right-hand side.
+   !> Both parts; `a` is modified in place (pass a copy of the stiffness).
    pure subroutine apply_dirichlet(a, fixed, value, f)
       type(sym_csc_t), intent(inout) :: a
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: value(:)
+      real(wp), intent(inout) :: f(:)
+      call constrain_rhs(a, fixed, value, f)
+      call constrain_matrix(a, fixed)
+   end subroutine apply_dirichlet
+
+   !> Right-hand side for the constrained system, from the unconstrained matrix `a`.
+   pure subroutine constrain_rhs(a, fixed, value, f)
+      type(sym_csc_t), intent(in) :: a
       logical, intent(in) :: fixed(:)
       real(wp), intent(in) :: value(:)
       real(wp), intent(inout) :: f(:)
       integer(ip) :: j, i
       integer(i8) :: k
       do j = 1, a%n
-         do k = a%col_ptr(j), a%col_ptr(j + 1) - 1
+         do k = a%col_ptr(j), a%col_ptr(j + 1) - 2      ! the diagonal is last: skipped
             i = a%row_idx(k)
-            if (i == j) cycle
             if (fixed(j) .and. .not. fixed(i)) then
                f(i) = f(i) - a%val(k)*value(j)
-               a%val(k) = 0.0_wp
             else if (fixed(i) .and. .not. fixed(j)) then
                f(j) = f(j) - a%val(k)*value(i)
-               a%val(k) = 0.0_wp
-            else if (fixed(i) .and. fixed(j)) then
-               a%val(k) = 0.0_wp
             end if
          end do
       end do
       do j = 1, a%n
-         if (.not. fixed(j)) cycle
-         k = a%col_ptr(j + 1) - 1          ! the diagonal is the last entry of its column
-         if (a%val(k) <= 0.0_wp) a%val(k) = 1.0_wp
-         f(j) = a%val(k)*value(j)
+         if (fixed(j)) f(j) = kept_diagonal(a%val(a%col_ptr(j + 1) - 1))*value(j)
       end do
-   end subroutine apply_dirichlet
+   end subroutine constrain_rhs
+
+   !> Zero the couplings of fixed dofs; their diagonal stays (1 where it is not positive).
+   pure subroutine constrain_matrix(a, fixed)
+      type(sym_csc_t), intent(inout) :: a
+      logical, intent(in) :: fixed(:)
+      integer(ip) :: j
+      integer(i8) :: k
+      do j = 1, a%n
+         do k = a%col_ptr(j), a%col_ptr(j + 1) - 2
+            if (fixed(j) .or. fixed(a%row_idx(k))) a%val(k) = 0.0_wp
+         end do
+         k = a%col_ptr(j + 1) - 1
+         if (fixed(j)) a%val(k) = kept_diagonal(a%val(k))
+      end do
+   end subroutine constrain_matrix
+
+   pure real(wp) function kept_diagonal(d)
+      real(wp), intent(in) :: d
+      kept_diagonal = d
+      if (d <= 0.0_wp) kept_diagonal = 1.0_wp
+   end function kept_diagonal
 end module vemcontact_driver_dirichlet

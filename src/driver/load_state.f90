@@ -113,10 +113,15 @@ contains
             hi = min(lo + 2*width, n + 1)
             i = lo; j = mid; k = lo
             do while (k < hi)
-               if (i < mid .and. (j >= hi .or. .not. key_less(keys(:, order(j)), keys(:, order(i))))) then
-                  tmp(k) = order(i); i = i + 1
-               else
+               ! Fortran does not short-circuit: never index order(j) with j = hi
+               if (i >= mid) then
                   tmp(k) = order(j); j = j + 1
+               else if (j >= hi) then
+                  tmp(k) = order(i); i = i + 1
+               else if (key_less(keys(:, order(j)), keys(:, order(i)))) then
+                  tmp(k) = order(j); j = j + 1
+               else
+                  tmp(k) = order(i); i = i + 1
                end if
                k = k + 1
             end do

@@ -1,0 +1,142 @@
+!> Global assembly: stiffness into the fixed pattern, load vector, element stresses.
+!> Work arrays are sized once for the largest element, so the element loop allocates nothing.
+module vemcontact_driver_assembly
+   use vemcontact_kinds, only: wp, ip, i8
+   use vemcontact_error, only: error_t, append_message, err_model, err_internal
+   use vemcontact_model, only: model_t, dload_t, location_string, dload_grav, dload_pressure
+   use vemcontact_sparse_matrix, only: sym_csc_t
+   use vemcontact_sparse_pattern, only: add_element_matrix
+   use vemcontact_material_elastic, only: elastic_matrix, out_of_plane_stress
+   use vemcontact_element, only: element_stiffness, element_stress, element_load_weights, &
+                                 element_workspace_size
+   implicit none
+   private
+
+   public :: assemble_stiffness, assemble_loads, element_stresses, max_element_nodes
+
+contains
+
+   !> Largest number of nodes of any element.
+   pure integer function max_element_nodes(model) result(nmax)
+      type(model_t), intent(in) :: model
+      nmax = 0
+      if (model%nelem > 0) nmax = maxval(model%elem_ptr(2:) - model%elem_ptr(:model%nelem))
+   end function max_element_nodes
+
+   !> Assemble the stiffness matrix into `a` (pattern already built, values overwritten).
+   subroutine assemble_stiffness(model, a, error)
+      type(model_t), intent(in) :: model
+      type(sym_csc_t), intent(inout) :: a
+      type(error_t), allocatable, intent(out) :: error
+      real(wp), allocatable :: xy(:, :), ke(:, :), work(:)
+      real(wp) :: d(3, 3)
+      integer :: nmax, n, info, e, nerr
+      integer(ip) :: first
+      logical :: ok
+      character(len=32) :: buf
+      nmax = max_element_nodes(model)
+      allocate (xy(2, nmax), ke(2*nmax, 2*nmax), work(element_workspace_size(nmax)))
+      a%val = 0.0_wp
+      nerr = 0
+      do e = 1, model%nelem
+         first = model%elem_ptr(e)
+         n = model%elem_ptr(e + 1) - first
+         xy(:, :n) = model%x(:, model%elem_conn(first:first + n - 1))
+         associate (mat => model%materials(model%elem_mat(e)))
+            call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
+         end associate
+         call element_stiffness(model%elem_type(e), model%elem_form(e), xy(:, :n), d, &
+                                model%elem_thick(e), ke(:2*n, :2*n), work, info)
+         if (info /= 0) then
+            nerr = nerr + 1
+            write (buf, '(i0)') model%elem_id(e)
+            call append_message(error, location_string(model, model%elem_loc(e))// &
+                                ': error: element '//trim(buf)//': '//info_text(info), err_model)
+            if (nerr >= 50) return
+            cycle
+         end if
+         call add_element_matrix(a, model%elem_conn(first:first + n - 1), ke(:2*n, :2*n), ok)
+         if (.not. ok) then
+            call append_message(error, 'internal error: element outside the matrix pattern', err_internal)
+            return
+         end if
+      end do
+   end subroutine assemble_stiffness
+
+   pure function info_text(info) result(s)
+      integer, intent(in) :: info
+      character(len=:), allocatable :: s
+      select case (info)
+      case (1); s = 'area is zero or negative'
+      case (2); s = 'FORMULATION=FEM needs a 3- or 4-node element'
+      case (3); s = 'FEM Jacobian is not positive at a Gauss point (element too distorted for FEM; use FORMULATION=VEM)'
+      case default; s = 'element routine failed'
+      end select
+   end function info_text
+
+   !> Load vector of the state: concentrated loads plus distributed loads.
+   subroutine assemble_loads(model, force, dloads, f)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: force(:)
+      type(dload_t), intent(in) :: dloads(:)
+      real(wp), intent(out) :: f(:)
+      real(wp), allocatable :: xy(:, :), w(:), work(:)
+      real(wp) :: t(2), scale
+      integer :: k, n, e, a, b, i, nmax
+      integer(ip) :: first, node
+      nmax = max_element_nodes(model)
+      allocate (xy(2, nmax), w(nmax), work(element_workspace_size(nmax)))
+      f = force
+      do k = 1, size(dloads)
+         e = dloads(k)%elem
+         first = model%elem_ptr(e)
+         n = model%elem_ptr(e + 1) - first
+         select case (dloads(k)%kind)
+         case (dload_grav)
+            xy(:, :n) = model%x(:, model%elem_conn(first:first + n - 1))
+            call element_load_weights(model%elem_type(e), model%elem_form(e), xy(:, :n), work, w(:n))
+            scale = model%materials(model%elem_mat(e))%density*dloads(k)%magnitude*model%elem_thick(e)
+            do i = 1, n
+               node = model%elem_conn(first + i - 1)
+               f(2*node - 1:2*node) = f(2*node - 1:2*node) + scale*w(i)*dloads(k)%dir
+            end do
+         case (dload_pressure)
+            ! edge a->b of a counter-clockwise polygon has outward normal (t_y, -t_x)/|t|;
+            ! a positive pressure pushes inward, split equally (the trace is linear on the edge)
+            a = model%elem_conn(first + dloads(k)%side - 1)
+            b = model%elem_conn(first + mod(dloads(k)%side, n))
+            t = model%x(:, b) - model%x(:, a)
+            scale = -0.5_wp*dloads(k)%magnitude*model%elem_thick(e)
+            f(2*a - 1:2*a) = f(2*a - 1:2*a) + scale*[t(2), -t(1)]
+            f(2*b - 1:2*b) = f(2*b - 1:2*b) + scale*[t(2), -t(1)]
+         end select
+      end do
+   end subroutine assemble_loads
+
+   !> Element stresses (xx, yy, zz, xy) from the displacement field u(2*nnode).
+   subroutine element_stresses(model, u, s_elem)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      real(wp), intent(out) :: s_elem(:, :)
+      real(wp), allocatable :: xy(:, :), ue(:), work(:)
+      real(wp) :: d(3, 3), sig(3)
+      integer :: e, n, i, nmax
+      integer(ip) :: first, node
+      nmax = max_element_nodes(model)
+      allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)))
+      do e = 1, model%nelem
+         first = model%elem_ptr(e)
+         n = model%elem_ptr(e + 1) - first
+         do i = 1, n
+            node = model%elem_conn(first + i - 1)
+            xy(:, i) = model%x(:, node)
+            ue(2*i - 1:2*i) = u(2*node - 1:2*node)
+         end do
+         associate (mat => model%materials(model%elem_mat(e)))
+            call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
+            call element_stress(model%elem_type(e), model%elem_form(e), xy(:, :n), d, ue(:2*n), work, sig)
+            s_elem(:, e) = [sig(1), sig(2), out_of_plane_stress(mat%poisson, model%elem_plane(e), sig(1), sig(2)), sig(3)]
+         end associate
+      end do
+   end subroutine element_stresses
+end module vemcontact_driver_assembly

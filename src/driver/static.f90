@@ -1,0 +1,127 @@
+!> Linear static analysis over the deck's steps, with output after every step.
+!> Every completed step is on disk (VTU, PVD, HDF5) before the next starts, so a
+!> run that fails part way keeps what it completed.
+module vemcontact_driver_static
+   use vemcontact_kinds, only: wp, ip
+   use vemcontact_error, only: error_t
+   use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon
+   use vemcontact_sparse_mmio, only: write_matrix_market
+   use vemcontact_driver_linear, only: linear_system_t
+   use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
+   use vemcontact_driver_assembly, only: element_stresses
+   use vemcontact_post_stress, only: nodal_average
+   use vemcontact_output_vtu, only: write_vtu
+   use vemcontact_output_pvd, only: write_pvd
+   use vemcontact_output_hdf5, only: h5_writer_t
+   use vemcontact_app_log, only: logger_t
+   use vemcontact_clock, only: wall_time
+   implicit none
+   private
+
+   public :: run_options_t, run_static
+
+   type :: run_options_t
+      character(len=:), allocatable :: out_dir
+      character(len=:), allocatable :: job
+      integer :: ordering = 0                 !< vemcontact_driver_linear's ordering_*
+      logical :: write_matrix = .false.
+   end type run_options_t
+
+contains
+
+   subroutine run_static(model, opts, log, error)
+      type(model_t), intent(in) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(in) :: log
+      type(error_t), allocatable, intent(out) :: error
+      type(linear_system_t) :: sys
+      type(load_state_t) :: st
+      type(h5_writer_t) :: h5
+      real(wp), allocatable :: u(:), s_elem(:, :), s_node(:, :), times(:)
+      type(string_t), allocatable :: vtu_files(:)
+      real(wp) :: t0
+      integer :: istep
+      character(len=256) :: buf
+      character(len=:), allocatable :: base, vtu_name, name
+
+      write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'nodes ', model%nnode, ', elements ', model%nelem, &
+         ', unknowns ', 2*model%nnode, ', steps ', size(model%steps)
+      call log%say(trim(buf))
+      write (buf, '(2x,a,i0,a,i0,a,i0)') 'VEM elements ', count(model%elem_form == form_vem), &
+         ', FEM elements ', count(model%elem_form == form_fem), ', of them polygons (VPE/VPS) ', &
+         count(model%elem_type == etype_polygon)
+      call log%say(trim(buf))
+
+      call sys%setup(model, opts%ordering, error)
+      if (allocated(error)) return
+      if (any(sys%unused)) then
+         write (buf, '(2x,a,i0,a)') 'note: ', count(sys%unused), ' nodes belong to no element and are left out'
+         call log%say(trim(buf))
+      end if
+      write (buf, '(2x,a,i0,a,es9.2,a,a)') 'factor nnz ', sys%solver%nnz_factor, ', flops ', sys%solver%flops
+      call log%say(trim(buf))
+      call log%phase('pattern', sys%t_pattern)
+      call log%phase('assemble', sys%t_assemble)
+      call log%phase('analyze', sys%t_analyze)
+
+      base = opts%out_dir//'/'//opts%job
+      call h5%open(base//'.h5', error)
+      if (allocated(error)) return
+      call h5%write_mesh(model, error)
+      if (allocated(error)) return
+
+      call init_load_state(model, st)
+      allocate (u(2*model%nnode), s_elem(4, model%nelem), s_node(4, model%nnode))
+      allocate (vtu_files(0), times(0))
+      do istep = 1, size(model%steps)
+         name = step_name(istep)
+         call log%say('step '//name)
+         call advance_load_state(model%steps(istep), st)
+         call sys%solve_state(model, st, u, error)
+         if (allocated(error)) return
+         if (sys%refactorized) call log%phase('factorize', sys%t_factorize)
+         call log%phase('solve', sys%t_solve)
+         if (opts%write_matrix .and. istep == 1) then
+            call write_matrix_market(base//'.mtx', sys%kb, error)
+            if (allocated(error)) return
+         end if
+
+         t0 = wall_time()
+         call element_stresses(model, u, s_elem)
+         call nodal_average(model, s_elem, s_node)
+         write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
+         vtu_name = opts%job//trim(buf)
+         call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u, [2, int(model%nnode)]), &
+                        s_elem, s_node, error)
+         if (allocated(error)) return
+         vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
+         times = [times, real(istep, wp)]
+         call write_pvd(base//'.pvd', vtu_files, times, error)
+         if (allocated(error)) return
+         call h5%write_step(istep, name, real(istep, wp), reshape(u, [2, int(model%nnode)]), &
+                            s_elem, s_node, error)
+         if (allocated(error)) return
+         call log%phase('write', wall_time() - t0)
+         write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(u(1::2))), &
+            ', max |u_y| ', maxval(abs(u(2::2))), ', rcond ', sys%solver%rcond()
+         call log%say(trim(buf))
+      end do
+      call h5%close()
+      call sys%solver%release()
+      call log%say('results')
+      call log%say('  '//base//'.pvd')
+      call log%say('  '//base//'.h5')
+   contains
+      function step_name(i) result(s)
+         integer, intent(in) :: i
+         character(len=:), allocatable :: s
+         character(len=16) :: b
+         if (allocated(model%steps(i)%name)) then
+            s = model%steps(i)%name
+         else
+            write (b, '(a,i0)') 'Step-', i
+            s = trim(b)
+         end if
+      end function step_name
+   end subroutine run_static
+end module vemcontact_driver_static

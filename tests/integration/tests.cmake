@@ -1,0 +1,40 @@
+# Decks run through the vemcontact executable: vc_deck_test(name deck code regex [FILES ...] [ABSENT ...])
+set(VC_DECKS "${CMAKE_CURRENT_LIST_DIR}/decks")
+function(vc_deck_test name deck code regex)
+  cmake_parse_arguments(A "" "" "FILES;ABSENT" ${ARGN})
+  add_test(NAME deck_${name}
+    COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:vemcontact> -DDECK=${deck}
+            -DOUT=${CMAKE_CURRENT_BINARY_DIR}/deck-out/${name} -DCODE=${code} "-DREGEX=${regex}"
+            "-DFILES=${A_FILES}" "-DABSENT=${A_ABSENT}"
+            -P ${CMAKE_CURRENT_LIST_DIR}/run_deck.cmake)
+  set_tests_properties(deck_${name} PROPERTIES LABELS deck)
+endfunction()
+
+# the example decks run and write their results
+vc_deck_test(example1_cantilever "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" 0 ""
+  FILES example1_cantilever.pvd example1_cantilever_0001.vtu example1_cantilever.h5 example1_cantilever.log)
+vc_deck_test(minimal_polygon ${VC_DECKS}/minimal_polygon.inp 0 "" FILES minimal_polygon_0001.vtu)
+
+# the command line
+add_test(NAME cli_help COMMAND vemcontact --help)
+set_tests_properties(cli_help PROPERTIES PASS_REGULAR_EXPRESSION "usage: vemcontact")
+add_test(NAME cli_version COMMAND vemcontact --version)
+set_tests_properties(cli_version PROPERTIES PASS_REGULAR_EXPRESSION "vemcontact [0-9]+\\.[0-9]+")
+add_test(NAME cli_unknown_option COMMAND vemcontact --frobnicate x.inp)
+set_tests_properties(cli_unknown_option PROPERTIES WILL_FAIL TRUE)
+vc_deck_test(missing_deck ${VC_DECKS}/does_not_exist.inp 2 "does_not_exist.inp")
+
+# bad input: exit status 1, one clear message naming file:line
+vc_deck_test(err_clockwise ${VC_DECKS}/err_clockwise.inp 1 "err_clockwise.inp:[0-9]+: error: element 2 is clockwise")
+vc_deck_test(err_zero_area ${VC_DECKS}/err_zero_area.inp 1 "err_zero_area.inp:[0-9]+: error: element 1 has zero area")
+vc_deck_test(err_self_intersecting ${VC_DECKS}/err_self_intersecting.inp 1
+  "err_self_intersecting.inp:[0-9]+: error: element 1 is self-intersecting")
+vc_deck_test(err_repeated_node ${VC_DECKS}/err_repeated_node.inp 1 "element 1 uses node 2 twice")
+vc_deck_test(err_several ${VC_DECKS}/err_several.inp 1 "element 1 is clockwise.*element 2 is self-intersecting")
+
+# a model that cannot be solved: exit status 3, the floating part named; a run
+# that fails in step 2 keeps step 1 on disk
+vc_deck_test(floating_part ${VC_DECKS}/floating_part.inp 3 "part 2 of 2 .*element 2 .*floats: it can translate"
+  ABSENT floating_part_0001.vtu)
+vc_deck_test(fails_in_step2 ${VC_DECKS}/fails_in_step2.inp 3 "floats"
+  FILES fails_in_step2_0001.vtu fails_in_step2.pvd fails_in_step2.h5 ABSENT fails_in_step2_0002.vtu)
