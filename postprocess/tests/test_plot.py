@@ -1,0 +1,91 @@
+"""The plot command and the default example's physics."""
+import os
+import subprocess
+import sys
+
+import h5py
+import meshio
+import numpy as np
+
+ENV = dict(os.environ, PYTHONPATH=os.path.join(os.path.dirname(__file__), ".."))
+
+
+def run_plot(*args):
+    return subprocess.run([sys.executable, "-m", "vctools.plot", *args], capture_output=True, text=True, env=ENV)
+
+
+def test_block_section_equilibrium(block_result):
+    """Equilibrium of the part above a horizontal cut: the mean of sigma_yy across
+    the cut is -rho g depth (1 m wide block, density 2400, g = 9.81), whatever the
+    lateral restraint of the base does to its distribution.  Approximated by the
+    area-weighted mean over the cells of a thin band around the cut; the band's
+    own weight and the constant-per-cell stress leave an O(h^2) error, 1% here."""
+    with h5py.File(block_result / "block_selfweight.h5") as f:
+        xy = f["mesh/coordinates"][()]
+        off = f["mesh/element_offsets"][()]
+        conn = f["mesh/element_connectivity"][()]
+        s = f["steps/0001/S_element"][()]
+    for cut in (0.3, 0.5, 0.7):
+        num = den = ycen = 0.0
+        for e in range(len(off) - 1):
+            p = xy[conn[off[e]:off[e + 1]]]
+            a = 0.5 * np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])
+            cy = np.sum((p[:, 1] + np.roll(p[:, 1], -1)) * (p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])) / (6 * a)
+            if abs(cy - cut) < 0.05:
+                num += a * s[e, 1]
+                den += a
+                ycen += a * cy
+        mean, ybar = num / den, ycen / den
+        expected = -2400 * 9.81 * (1.0 - ybar)
+        assert abs(mean - expected) < 0.01 * abs(expected), (cut, mean, expected)
+
+
+def test_plot_writes_pictures(block_result, tmp_path):
+    r = run_plot(str(block_result / "block_selfweight.pvd"), "--deformed", "auto", "-o", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    files = r.stdout.split()
+    assert len(files) == 5
+    for f in files:
+        assert os.path.getsize(f) > 10000
+        with open(f, "rb") as fh:
+            assert fh.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_plot_pdf_and_cell_field(block_result, tmp_path):
+    r = run_plot(str(block_result / "block_selfweight_0001.vtu"), "--field", "cell:S:yy", "--format", "pdf",
+                 "-o", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    with open(r.stdout.split()[0], "rb") as fh:
+        assert fh.read(4) == b"%PDF"
+
+
+def one_line_error(r, *words):
+    assert r.returncode != 0
+    assert "Traceback" not in r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1, r.stderr
+    for w in words:
+        assert w in lines[0], lines[0]
+
+
+def test_missing_file(tmp_path):
+    one_line_error(run_plot(str(tmp_path / "nothing.pvd")), "nothing.pvd", "no such file")
+
+
+def test_unknown_field_and_step(block_result):
+    one_line_error(run_plot(str(block_result / "block_selfweight.pvd"), "--field", "TEMP"), "no point field TEMP")
+    one_line_error(run_plot(str(block_result / "block_selfweight.pvd"), "--field", "S"), "say which")
+    one_line_error(run_plot(str(block_result / "block_selfweight.pvd"), "--step", "3"), "no step 3")
+
+
+def test_foreign_vtu(tmp_path):
+    p = tmp_path / "other.vtu"
+    meshio.write_points_cells(str(p), np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]]), [("triangle", np.array([[0, 1, 2]]))])
+    one_line_error(run_plot(str(p)), "other.vtu", "not written by vemcontact")
+
+
+def test_truncated_vtu(block_result, tmp_path):
+    src = (block_result / "block_selfweight_0001.vtu").read_bytes()
+    p = tmp_path / "cut.vtu"
+    p.write_bytes(src[: len(src) // 2])
+    one_line_error(run_plot(str(p)), "cut.vtu")

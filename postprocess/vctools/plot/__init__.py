@@ -1,0 +1,1 @@
+"""Plots of vemcontact results (contours on polygon meshes)."""

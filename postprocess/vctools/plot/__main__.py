@@ -1,0 +1,58 @@
+"""vc-plot: contour pictures of vemcontact results.
+
+  python -m vctools.plot RESULT [--field F ...] [--step K] [--deformed auto|SCALE]
+                         [--units TEXT] [-o DIR] [--format png|pdf]
+
+RESULT is a .vtu file or a .pvd collection (default: its last step).  Fields:
+MISES, S1, S3, U (magnitude), U:x, U:y, S:xx, S:yy, S:zz, S:xy; prefix cell: for
+element values (cell:S:yy).  One picture per field, named JOB_FIELD.png.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from .results import ResultError, read_vtu, step_files
+from .contour import plot
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="vc-plot", description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter,
+                                epilog=__doc__.split("\n\n", 1)[1])
+    p.add_argument("result", help=".vtu file or .pvd collection")
+    p.add_argument("--field", action="append", help="field to draw (repeatable; default U:x U:y S1 S3 MISES)")
+    p.add_argument("--step", type=int, default=0, help="step of a .pvd, 1-based (default: last)")
+    p.add_argument("--deformed", default=None, help="draw on the deformed shape: auto or a scale factor")
+    p.add_argument("--units", default="", help="units written on the colour bar")
+    p.add_argument("-o", "--output", default=None, help="folder for the pictures (default: the result's)")
+    p.add_argument("--format", choices=["png", "pdf"], default="png")
+    a = p.parse_args(argv)
+    try:
+        files = step_files(a.result)
+        if a.step < 0 or a.step > len(files):
+            raise ResultError(f"{a.result}: has {len(files)} steps, no step {a.step}")
+        vtu = files[a.step - 1] if a.step else files[-1]
+        res = read_vtu(vtu)
+        deformed = None
+        if a.deformed is not None:
+            deformed = "auto" if a.deformed == "auto" else float(a.deformed)
+        outdir = a.output or os.path.dirname(os.path.abspath(vtu))
+        os.makedirs(outdir, exist_ok=True)
+        job = os.path.splitext(os.path.basename(vtu))[0]
+        for f in a.field or ["U:x", "U:y", "S1", "S3", "MISES"]:
+            out = os.path.join(outdir, f"{job}_{f.replace(':', '_')}.{a.format}")
+            plot(res, f, out, deformed=deformed, units=a.units)
+            print(out)
+    except ResultError as exc:
+        print(f"vc-plot: error: {exc}", file=sys.stderr)
+        return 1
+    except ValueError as exc:
+        print(f"vc-plot: error: {exc}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,64 @@
+"""Contour plot of one field of a vemcontact result on its polygon mesh."""
+from __future__ import annotations
+
+import numpy as np
+
+from .results import PolyResult, field_values
+
+
+def fan_triangles(polygons) -> np.ndarray:
+    """Triangles (a fan from each polygon's first vertex) for smooth point-data shading.
+    A fan is only a drawing device: for non-convex cells a few triangles overlap,
+    which shifts colours locally but never the values at the nodes."""
+    tris = [np.column_stack([np.full(len(p) - 2, p[0]), p[1:-1], p[2:]]) for p in polygons]
+    return np.vstack(tris)
+
+
+def plot(res: PolyResult, spec: str, out: str, deformed: float | str | None = None,
+         units: str = "", title: str | None = None, lines: list | None = None) -> float:
+    """Draw `spec` on the (optionally deformed) mesh into `out` (.png or .pdf).
+    Returns the deformation scale used (0 when undeformed)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+    from matplotlib.tri import Triangulation
+
+    xy = res.points.copy()
+    scale = 0.0
+    if deformed is not None:
+        u = np.asarray(res.point_data["U"])[:, :2]
+        umax = float(np.max(np.linalg.norm(u, axis=1))) if len(u) else 0.0
+        size = float(np.max(np.ptp(xy, axis=0)))
+        if deformed == "auto":
+            scale = 0.08 * size / umax if umax > 0 else 0.0
+        else:
+            scale = float(deformed)
+        xy = xy + scale * u
+    values, where, label = field_values(res, spec)
+    fig, ax = plt.subplots(figsize=(8, 5.5), dpi=150)
+    verts = [xy[p] for p in res.polygons]
+    if where == "point":
+        tri = Triangulation(xy[:, 0], xy[:, 1], fan_triangles(res.polygons))
+        m = ax.tripcolor(tri, values, shading="gouraud", cmap="viridis")
+        ax.add_collection(PolyCollection(verts, facecolors="none", edgecolors="k", linewidths=0.15, alpha=0.5))
+    else:
+        m = PolyCollection(verts, array=values, cmap="viridis", edgecolors="k", linewidths=0.15)
+        ax.add_collection(m)
+    for line in lines or []:
+        seg = np.asarray(line, dtype=float)
+        ax.plot(seg[:, 0], seg[:, 1], color="red", lw=1.5)
+    ax.autoscale_view()
+    ax.set_aspect("equal")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    cb = fig.colorbar(m, ax=ax, shrink=0.85)
+    cb.set_label(f"{label} [{units}]" if units else label)
+    t = title or f"{label}"
+    if deformed is not None:
+        t += f"  (deformed shape, displacements x {scale:.3g})"
+    ax.set_title(t, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out)
+    plt.close(fig)
+    return scale

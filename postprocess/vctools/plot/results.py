@@ -1,0 +1,106 @@
+"""Reading vemcontact's .vtu/.pvd results into plain numpy arrays.
+
+Errors are raised as ResultError with a one-line message naming the file and
+what is missing; the command-line front end prints it and exits non-zero.
+"""
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+
+import numpy as np
+
+
+class ResultError(Exception):
+    """A result file that is missing, unreadable or lacks what was asked for."""
+
+
+@dataclass
+class PolyResult:
+    points: np.ndarray            # (npoints, 2)
+    polygons: list                # list of int arrays (0-based point indices), one per cell
+    point_data: dict              # name -> (npoints,) or (npoints, k)
+    cell_data: dict               # name -> (ncells,) or (ncells, k)
+    path: str
+
+
+def step_files(path: str) -> list[str]:
+    """The .vtu files of a .pvd collection in order, or [path] for a .vtu."""
+    if not os.path.exists(path):
+        raise ResultError(f"{path}: no such file")
+    if not path.endswith(".pvd"):
+        return [path]
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as exc:
+        raise ResultError(f"{path}: not a readable .pvd collection ({exc})") from None
+    base = os.path.dirname(path)
+    files = [os.path.join(base, ds.get("file", "")) for ds in root.iter("DataSet")]
+    if not files:
+        raise ResultError(f"{path}: the collection lists no steps")
+    return files
+
+
+def read_vtu(path: str) -> PolyResult:
+    """Read one step written by vemcontact."""
+    import meshio  # imported late: the package is only needed here
+
+    if not os.path.exists(path):
+        raise ResultError(f"{path}: no such file")
+    sink = io.StringIO()
+    try:
+        # meshio prints its own message and calls sys.exit on some bad files
+        with contextlib.redirect_stdout(sink), contextlib.redirect_stderr(sink):
+            mesh = meshio.read(path, file_format="vtu")
+    except (Exception, SystemExit) as exc:  # meshio raises many kinds; report one line
+        why = " ".join(str(exc).split()) if not isinstance(exc, SystemExit) else "truncated or not VTK XML"
+        raise ResultError(f"{path}: cannot be read as a VTK XML file ({why})") from None
+    polygons = []
+    cell_data = {}
+    blocks = []
+    for block in mesh.cells:
+        if not block.type.startswith("polygon") and block.type not in ("triangle", "quad"):
+            raise ResultError(f"{path}: cells of type {block.type} are not polygons: not a vemcontact result")
+        blocks.append(block)
+        polygons.extend(np.asarray(c, dtype=np.int64) for c in block.data)
+    for name, arrays in mesh.cell_data.items():
+        cell_data[name] = np.concatenate([np.asarray(a) for a in arrays])
+    # meshio splits polygons into blocks by vertex count; cells keep the file's
+    # order within each block, so reorder by ELEMENT_ID position when present
+    if "ELEMENT_ID" not in cell_data or "U" not in mesh.point_data:
+        raise ResultError(f"{path}: lacks ELEMENT_ID/U: not written by vemcontact")
+    return PolyResult(points=np.asarray(mesh.points)[:, :2], polygons=polygons,
+                      point_data=dict(mesh.point_data), cell_data=cell_data, path=path)
+
+
+COMPONENTS = {"U": ["x", "y", "z"], "S": ["xx", "yy", "zz", "xy"]}
+
+
+def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
+    """Values of a field spec: 'MISES', 'S1', 'S3', 'U' (magnitude), 'U:x', 'S:xx',
+    'cell:S:yy' (element values).  Returns (values, 'point'|'cell', label)."""
+    where = "point"
+    s = spec
+    if s.startswith("cell:"):
+        where, s = "cell", s[5:]
+    name, _, comp = s.partition(":")
+    data = res.point_data if where == "point" else res.cell_data
+    if name not in data:
+        have = ", ".join(sorted(data))
+        raise ResultError(f"{res.path}: no {where} field {name} (it has {have})")
+    v = np.asarray(data[name], dtype=float)
+    if v.ndim == 1:
+        if comp:
+            raise ResultError(f"{res.path}: field {name} has no components")
+        return v, where, name
+    names = COMPONENTS.get(name, [str(i) for i in range(v.shape[1])])
+    if not comp:
+        if name == "U":
+            return np.linalg.norm(v[:, :2], axis=1), where, "|U|"
+        raise ResultError(f"{res.path}: field {name} has components {', '.join(names)}: say which, as {name}:{names[0]}")
+    if comp not in names:
+        raise ResultError(f"{res.path}: field {name} has no component {comp} (it has {', '.join(names)})")
+    return v[:, names.index(comp)], where, f"{name}_{comp}"
