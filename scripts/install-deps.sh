@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-debs=(gfortran gcc make cmake ninja-build pkg-config libopenblas-dev liblapack-dev
+debs=(ca-certificates gfortran gcc make cmake ninja-build pkg-config libopenblas-dev liblapack-dev
       libsuitesparse-dev libmetis-dev libhdf5-dev hdf5-tools python3 python3-venv)
 missing=()
 for p in "${debs[@]}"; do
@@ -19,7 +19,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-# Python: Debian's interpreter, pinned packages in a project-local venv.
+# Python: Debian's interpreter, pinned packages in a project-local venv.  pip is
+# pointed at the system's certificate store so that a site's own CAs (installed
+# in /usr/local/share/ca-certificates) are trusted, not only pip's bundled ones.
+if [ -z "${PIP_CERT:-}" ] && [ -f /etc/ssl/certs/ca-certificates.crt ]; then
+  export PIP_CERT=/etc/ssl/certs/ca-certificates.crt
+fi
 req=postprocess/requirements.txt
 stamp=.venv/.requirements.sha256
 want=$(sha256sum "$req" | cut -d' ' -f1)

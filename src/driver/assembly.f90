@@ -3,7 +3,7 @@
 module vemcontact_driver_assembly
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, append_message, err_model, err_internal
-   use vemcontact_model, only: model_t, dload_t, location_string, dload_grav, dload_pressure
+   use vemcontact_model, only: model_t, dload_t, location_string, dload_grav, dload_pressure, dload_hydrostatic
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_material_elastic, only: elastic_matrix, out_of_plane_stress
@@ -12,7 +12,7 @@ module vemcontact_driver_assembly
    implicit none
    private
 
-   public :: assemble_stiffness, assemble_loads, element_stresses, max_element_nodes
+   public :: assemble_stiffness, assemble_loads, element_stresses, max_element_nodes, hydrostatic_moments
 
 contains
 
@@ -81,7 +81,7 @@ contains
       type(dload_t), intent(in) :: dloads(:)
       real(wp), intent(out) :: f(:)
       real(wp), allocatable :: xy(:, :), w(:), work(:)
-      real(wp) :: t(2), scale
+      real(wp) :: t(2), scale, wa, wb
       integer :: k, n, e, a, b, i, nmax
       integer(ip) :: first, node
       nmax = max_element_nodes(model)
@@ -109,9 +109,55 @@ contains
             scale = -0.5_wp*dloads(k)%magnitude*model%elem_thick(e)
             f(2*a - 1:2*a) = f(2*a - 1:2*a) + scale*[t(2), -t(1)]
             f(2*b - 1:2*b) = f(2*b - 1:2*b) + scale*[t(2), -t(1)]
+         case (dload_hydrostatic)
+            a = model%elem_conn(first + dloads(k)%side - 1)
+            b = model%elem_conn(first + mod(dloads(k)%side, n))
+            t = model%x(:, b) - model%x(:, a)
+            call hydrostatic_moments(dloads(k), model%x(2, a), model%x(2, b), wa, wb)
+            f(2*a - 1:2*a) = f(2*a - 1:2*a) - wa*model%elem_thick(e)*[t(2), -t(1)]
+            f(2*b - 1:2*b) = f(2*b - 1:2*b) - wb*model%elem_thick(e)*[t(2), -t(1)]
          end select
       end do
    end subroutine assemble_loads
+
+   !> Consistent nodal weights of a hydrostatic pressure on a side from height ya
+   !> (s = 0) to yb (s = 1): wa = integral of p(s) (1 - s) ds, wb = integral of p(s) s ds.
+   !> p = magnitude * (y0 - y)/(y0 - yref) on the wet side of the free surface y0
+   !> and 0 beyond it (Abaqus HP); the integrals are exact on the wet part of the side.
+   pure subroutine hydrostatic_moments(load, ya, yb, wa, wb)
+      type(dload_t), intent(in) :: load
+      real(wp), intent(in) :: ya, yb
+      real(wp), intent(out) :: wa, wb
+      real(wp) :: alpha, beta, s0, s1, y0, yref
+      y0 = load%dir(1)
+      yref = load%dir(2)
+      ! p(s) = alpha + beta*s along the side
+      alpha = load%magnitude*(y0 - ya)/(y0 - yref)
+      beta = load%magnitude*(ya - yb)/(y0 - yref)
+      s0 = 0.0_wp
+      s1 = 1.0_wp
+      ! keep the part of [0,1] where p*sign(magnitude) >= 0, i.e. the wet side
+      if (beta /= 0.0_wp) then
+         if (sign(1.0_wp, load%magnitude)*beta > 0.0_wp) then
+            s0 = max(0.0_wp, min(1.0_wp, -alpha/beta))
+         else
+            s1 = max(0.0_wp, min(1.0_wp, -alpha/beta))
+         end if
+      else if (sign(1.0_wp, load%magnitude)*alpha < 0.0_wp) then
+         s1 = s0
+      end if
+      wa = prim_a(s1) - prim_a(s0)
+      wb = prim_b(s1) - prim_b(s0)
+   contains
+      pure real(wp) function prim_a(x)   ! antiderivative of (alpha + beta x)(1 - x)
+         real(wp), intent(in) :: x
+         prim_a = alpha*x + (beta - alpha)*x**2/2 - beta*x**3/3
+      end function prim_a
+      pure real(wp) function prim_b(x)   ! antiderivative of (alpha + beta x) x
+         real(wp), intent(in) :: x
+         prim_b = alpha*x**2/2 + beta*x**3/3
+      end function prim_b
+   end subroutine hydrostatic_moments
 
    !> Element stresses (xx, yy, zz, xy) from the displacement field u(2*nnode).
    subroutine element_stresses(model, u, s_elem)

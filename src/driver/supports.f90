@@ -12,7 +12,15 @@ module vemcontact_driver_supports
    implicit none
    private
 
-   public :: find_parts, check_supports, unused_nodes
+   public :: find_parts, check_supports, unused_nodes, spring_t
+
+   !> A closed contact spring: where it acts, its normal, and the parts it joins.
+   type :: spring_t
+      real(wp) :: x(2) = 0.0_wp
+      real(wp) :: normal(2) = 0.0_wp
+      integer(ip) :: part_slave = 0
+      integer(ip) :: part_master = 0
+   end type spring_t
 
 contains
 
@@ -75,21 +83,31 @@ contains
       unused(model%elem_conn) = .false.
    end function unused_nodes
 
-   !> Error naming every part that its fixed dofs do not hold.
-   subroutine check_supports(model, part, nparts, fixed, error)
+   !> Error naming every part that its fixed dofs and contact springs do not hold.
+   !> The rigid motions of all parts are the unknowns (3 per part, in coordinates
+   !> centred on and scaled by each part's box, so the test is independent of units);
+   !> a fixed dof is a constraint row on its part, an active spring with normal n at
+   !> x a row n.(r_p(x) - r_q(x)) = 0 coupling the slave's part p and the master's
+   !> part q.  A null vector of the rows is a mechanism: the parts with a share of
+   !> it float.  Frictionless springs hold only along n, so a body resting on a
+   !> frictionless plane is rightly reported as free to slide.
+   subroutine check_supports(model, part, nparts, fixed, error, springs)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: part(:), nparts
       logical, intent(in) :: fixed(:)
       type(error_t), allocatable, intent(out) :: error
-      real(wp), allocatable :: lo(:, :), hi(:, :), ctc(:, :, :)
+      type(spring_t), intent(in), optional :: springs(:)
+      real(wp), allocatable :: lo(:, :), hi(:, :), ctc(:, :), ev(:), work(:), c(:, :), sc(:)
       integer(ip), allocatable :: nelem(:), first_elem(:)
-      real(wp) :: c(2), s, r(3), ev(3), work(20), m(3, 3), v(3)
-      integer :: p, i, e, info
-      character(len=160) :: buf
+      real(wp) :: r(6), v(3), share
+      integer :: p, q, i, e, k, info, m, cols(6), nr
+      logical, allocatable :: reported(:)
+      character(len=200) :: buf
       character(len=:), allocatable :: motion
+      if (nparts == 0) return
+      m = 3*nparts
       allocate (lo(2, nparts), source=huge(1.0_wp))
       allocate (hi(2, nparts), source=-huge(1.0_wp))
-      allocate (ctc(3, 3, nparts), source=0.0_wp)
       allocate (nelem(nparts), source=0_ip)
       allocate (first_elem(nparts), source=0_ip)
       do i = 1, model%nnode
@@ -103,47 +121,88 @@ contains
          nelem(p) = nelem(p) + 1
          if (first_elem(p) == 0) first_elem(p) = e
       end do
-      ! constraint rows in coordinates centred on and scaled by the part's box,
-      ! so the rank test is independent of units and position
+      allocate (c(2, nparts), sc(nparts))
+      c = 0.5_wp*(lo + hi)
+      sc = max(maxval(hi - lo, dim=1), tiny(1.0_wp))
+      allocate (ctc(m, m), source=0.0_wp)
       do i = 1, model%nnode
          p = part(i)
          if (p == 0) cycle
-         c = 0.5_wp*(lo(:, p) + hi(:, p))
-         s = max(maxval(hi(:, p) - lo(:, p)), tiny(1.0_wp))
-         if (fixed(2*i - 1)) then
-            r = [1.0_wp, 0.0_wp, -(model%x(2, i) - c(2))/s]
-            ctc(:, :, p) = ctc(:, :, p) + spread(r, 2, 3)*spread(r, 1, 3)
-         end if
-         if (fixed(2*i)) then
-            r = [0.0_wp, 1.0_wp, (model%x(1, i) - c(1))/s]
-            ctc(:, :, p) = ctc(:, :, p) + spread(r, 2, 3)*spread(r, 1, 3)
-         end if
+         if (fixed(2*i - 1)) call add_row([1.0_wp, 0.0_wp, -(model%x(2, i) - c(2, p))/sc(p)], [3*p - 2, 3*p - 1, 3*p], 3)
+         if (fixed(2*i)) call add_row([0.0_wp, 1.0_wp, (model%x(1, i) - c(1, p))/sc(p)], [3*p - 2, 3*p - 1, 3*p], 3)
       end do
-      do p = 1, nparts
-         m = ctc(:, :, p)
-         call dsyev('V', 'U', 3, m, 3, ev, work, size(work), info)
-         ! rows are O(1); a smallest eigenvalue below 1e-10 of the largest means the
-         ! supports leave a rigid motion free (exact zero in exact arithmetic)
-         if (info == 0 .and. ev(1) > 1.0e-10_wp*max(ev(3), 1.0_wp)) cycle
-         v = m(:, 1)
-         c = 0.5_wp*(lo(:, p) + hi(:, p))
-         s = max(maxval(hi(:, p) - lo(:, p)), tiny(1.0_wp))
-         if (ev(3) <= 0.0_wp) then
-            motion = 'it has no support at all (no *BOUNDARY on any of its nodes)'
-         else if (abs(v(3)) < 1.0e-8_wp) then
-            write (buf, '(a,2(es10.3,a))') 'it can translate freely along (', v(1)/norm2(v(1:2)), ',', &
-               v(2)/norm2(v(1:2)), ')'
-            motion = trim(buf)
-         else
-            write (buf, '(a,2(g0.6,a))') 'it can rotate freely about the point (', &
-               c(1) - v(2)/v(3)*s, ', ', c(2) + v(1)/v(3)*s, ')'
-            motion = trim(buf)
-         end if
-         write (buf, '(a,i0,a,i0,a,i0,a,i0)') 'error: the model is not held: part ', p, ' of ', nparts, &
-            ' (', nelem(p), ' elements, among them element ', model%elem_id(first_elem(p))
-         call append_message(error, trim(buf)//' defined at '// &
-                             location_string(model, model%elem_loc(first_elem(p)))//') floats: '//motion// &
-                             '. Add *BOUNDARY conditions that hold it.', err_model)
+      if (present(springs)) then
+         do k = 1, size(springs)
+            p = springs(k)%part_slave
+            q = springs(k)%part_master
+            if (p == q .or. p == 0 .or. q == 0) cycle   ! a joint inside one body holds nothing
+            associate (x => springs(k)%x, n => springs(k)%normal)
+               r(1:3) = [n(1), n(2), (-n(1)*(x(2) - c(2, p)) + n(2)*(x(1) - c(1, p)))/sc(p)]
+               r(4:6) = -[n(1), n(2), (-n(1)*(x(2) - c(2, q)) + n(2)*(x(1) - c(1, q)))/sc(q)]
+            end associate
+            cols = [3*p - 2, 3*p - 1, 3*p, 3*q - 2, 3*q - 1, 3*q]
+            call add_row(r, cols, 6)
+         end do
+      end if
+      allocate (ev(m), work(max(1, 3*m)))
+      call dsyev('V', 'U', m, ctc, m, ev, work, size(work), info)
+      if (info /= 0) return
+      allocate (reported(nparts), source=.false.)
+      ! rows are O(1): an eigenvalue below 1e-10 of the largest (at least 1) is a
+      ! null vector (exactly zero in exact arithmetic)
+      do k = 1, m
+         if (ev(k) > 1.0e-10_wp*max(ev(m), 1.0_wp)) exit
+         do p = 1, nparts
+            v = ctc(3*p - 2:3*p, k)
+            share = norm2(v)
+            if (share < 1.0e-3_wp .or. reported(p)) cycle
+            reported(p) = .true.
+            nr = count(fixed(2*pack([(i, i=1, model%nnode)], part == p) - 1)) + &
+                 count(fixed(2*pack([(i, i=1, model%nnode)], part == p)))
+            if (nr == 0 .and. .not. touched(p)) then
+               motion = 'it has no support at all (no *BOUNDARY on any of its nodes'
+               if (allocated(model%pairs)) then
+                  if (size(model%pairs) > 0) motion = motion//' and no closed contact'
+               end if
+               motion = motion//')'
+            else if (abs(v(3)) < 1.0e-8_wp*share) then
+               write (buf, '(a,2(es10.3,a))') 'it can translate freely along (', v(1)/norm2(v(1:2)), ',', &
+                  v(2)/norm2(v(1:2)), ')'
+               motion = trim(buf)
+            else
+               write (buf, '(a,2(g0.6,a))') 'it can rotate freely about the point (', &
+                  c(1, p) - v(2)/v(3)*sc(p), ', ', c(2, p) + v(1)/v(3)*sc(p), ')'
+               motion = trim(buf)
+            end if
+            write (buf, '(a,i0,a,i0,a,i0,a,i0)') 'error: the model is not held: part ', p, ' of ', nparts, &
+               ' (', nelem(p), ' elements, among them element ', model%elem_id(first_elem(p))
+            call append_message(error, trim(buf)//' defined at '// &
+                                location_string(model, model%elem_loc(first_elem(p)))//') floats: '//motion// &
+                                '. Add *BOUNDARY conditions that hold it.', err_model)
+         end do
       end do
+   contains
+      subroutine add_row(vals, idx, nv)
+         real(wp), intent(in) :: vals(:)
+         integer, intent(in) :: idx(:), nv
+         integer :: a, b
+         do b = 1, nv
+            do a = 1, nv
+               ctc(idx(a), idx(b)) = ctc(idx(a), idx(b)) + vals(a)*vals(b)
+            end do
+         end do
+      end subroutine add_row
+      logical function touched(pp)
+         integer, intent(in) :: pp
+         integer :: kk
+         touched = .false.
+         if (.not. present(springs)) return
+         do kk = 1, size(springs)
+            if (springs(kk)%part_slave == pp .or. springs(kk)%part_master == pp) then
+               touched = .true.
+               return
+            end if
+         end do
+      end function touched
    end subroutine check_supports
 end module vemcontact_driver_supports

@@ -4,7 +4,7 @@ program test_supports
    use vemcontact_testing, only: checker_t
    use vemcontact_error, only: error_t, err_model
    use vemcontact_model, only: model_t, string_t, source_loc_t
-   use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes
+   use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes, spring_t
    implicit none
    type(checker_t) :: t
    type(model_t) :: m
@@ -59,5 +59,30 @@ program test_supports
    call check_supports(m, part, nparts, fixed, error)
    call t%check(allocated(error), 'unsupported model')
    if (allocated(error)) call t%check(index(error%message, 'no support') > 0, 'no support named')
+   ! contact springs: part 1 clamped; part 2 rests on part 1 through two vertical
+   ! springs (frictionless): it can still slide along x
+   fixed = .false.
+   fixed([1, 2, 7]) = .true.
+   call check_supports(m, part, nparts, fixed, error, &
+                       [spring_t([3.0_wp, 0.0_wp], [0.0_wp, 1.0_wp], 2, 1), spring_t([4.0_wp, 0.0_wp], [0.0_wp, 1.0_wp], 2, 1)])
+   call t%check(allocated(error), 'body on a frictionless plane floats')
+   if (allocated(error)) then
+      call t%check(index(error%message, 'part 2') > 0 .and. index(error%message, 'translate') > 0 &
+                   .and. index(error%message, 'part 1') == 0, 'it slides along x: '//error%message)
+   end if
+   ! one x support added on part 2: held by the springs and that support
+   fixed(9) = .true.
+   call check_supports(m, part, nparts, fixed, error, &
+                       [spring_t([3.0_wp, 0.0_wp], [0.0_wp, 1.0_wp], 2, 1), spring_t([4.0_wp, 0.0_wp], [0.0_wp, 1.0_wp], 2, 1)])
+   call t%check(.not. allocated(error), 'held by contact and one support')
+   ! a single spring: it can rotate about the spring point on the x support line
+   call check_supports(m, part, nparts, fixed, error, [spring_t([4.0_wp, 0.0_wp], [0.0_wp, 1.0_wp], 2, 1)])
+   call t%check(allocated(error), 'one spring and one x support: rotation free')
+   ! no contact closed and no support on part 2 (the model has a contact pair)
+   allocate (m%pairs(1))
+   fixed(9) = .false.
+   call check_supports(m, part, nparts, fixed, error, [spring_t::])
+   call t%check(allocated(error), 'no closed contact')
+   if (allocated(error)) call t%check(index(error%message, 'no closed contact') > 0, 'says so: '//error%message)
    call t%finish()
 end program test_supports
