@@ -9,6 +9,7 @@ module vemcontact_model
 
    public :: model_t, named_set_t, material_t, section_t, step_t
    public :: dof_value_t, dload_t, string_t, source_loc_t
+   public :: surface_t, interaction_t, contact_pair_t, contact_controls_t
    public :: find_set, location_string
 
    !> Element topology
@@ -24,6 +25,13 @@ module vemcontact_model
    !> Distributed load kinds
    integer, parameter, public :: dload_grav = 1     !< body force rho*g*dir per unit volume
    integer, parameter, public :: dload_pressure = 2 !< uniform pressure on an element side
+   integer, parameter, public :: dload_hydrostatic = 3 !< pressure linear in y on a side (Abaqus HP<k>)
+   !> Surface kinds
+   integer, parameter, public :: surface_element = 1 !< element sides (TYPE=ELEMENT)
+   integer, parameter, public :: surface_node = 2    !< nodes (TYPE=NODE)
+   !> Step procedures
+   integer, parameter, public :: procedure_static = 1
+   integer, parameter, public :: procedure_geostatic = 2 !< *GEOSTATIC: displacements reset to zero after it
 
    !> A deferred-length string, for lists of names.
    type :: string_t
@@ -74,17 +82,52 @@ module vemcontact_model
    !> A distributed load on one element (*DLOAD).
    type :: dload_t
       integer(ip) :: elem = 0
-      integer :: kind = 0         !< dload_grav or dload_pressure
+      integer :: kind = 0         !< dload_grav, dload_pressure or dload_hydrostatic
       integer :: side = 0         !< for pressure: side k runs from node k to node k+1
-      real(wp) :: magnitude = 0.0_wp  !< g for GRAV, p for pressure (positive pushes inward)
-      real(wp) :: dir(2) = 0.0_wp     !< unit direction for GRAV
+      real(wp) :: magnitude = 0.0_wp  !< g for GRAV; p for pressure (positive pushes inward);
+                                      !< for HP the pressure at height dir(2)
+      real(wp) :: dir(2) = 0.0_wp     !< unit direction for GRAV; for HP: (y of zero pressure, y of magnitude)
    end type dload_t
+
+   !> *SURFACE: element sides (elem(k), side(k)) or nodes.
+   type :: surface_t
+      character(len=:), allocatable :: name   !< upper case
+      integer :: kind = 0                     !< surface_element or surface_node
+      integer(ip), allocatable :: elem(:)     !< element of each facet (element surfaces)
+      integer, allocatable :: side(:)         !< side of each facet: from node k to node k+1
+      integer(ip), allocatable :: nodes(:)    !< node surfaces: nodes, sorted and unique
+      type(source_loc_t) :: loc
+   end type surface_t
+
+   !> *SURFACE INTERACTION with its *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR:
+   !> contact pressure = penalty * overclosure, no tension offset.
+   type :: interaction_t
+      character(len=:), allocatable :: name   !< upper case
+      real(wp) :: penalty = 0.0_wp            !< slope K: pressure per unit overclosure
+      logical :: has_behavior = .false.
+      type(source_loc_t) :: loc
+   end type interaction_t
+
+   !> *CONTACT PAIR, TYPE=NODE TO SURFACE: slave (node or element surface) on master (element surface).
+   type :: contact_pair_t
+      integer :: slave = 0                    !< index into model%surfaces
+      integer :: master = 0                   !< index into model%surfaces (surface_element)
+      integer :: interaction = 0              !< index into model%interactions
+      type(source_loc_t) :: loc
+   end type contact_pair_t
+
+   !> Active-set iteration controls (*CONTACT CONTROLS), defaults for any model.
+   type :: contact_controls_t
+      integer :: max_iterations = 50          !< per step
+      real(wp) :: residual_tol = 1.0e-8_wp    !< relative to the norm of the external and reaction forces
+   end type contact_controls_t
 
    !> One *STEP.  Loads follow CalculiX: with OP=MOD (default) a step's entries
    !> replace those of earlier steps on the same dof/element and keep the rest;
    !> OP=NEW on a keyword first removes everything of that kind from earlier steps.
    type :: step_t
       character(len=:), allocatable :: name
+      integer :: procedure = procedure_static
       logical :: boundary_new = .false.
       logical :: cload_new = .false.
       logical :: dload_new = .false.
@@ -123,6 +166,11 @@ module vemcontact_model
       !> boundary conditions and loads given before the first *STEP: they hold in every step
       type(step_t) :: initial
       type(step_t), allocatable :: steps(:)
+      ! contact
+      type(surface_t), allocatable :: surfaces(:)
+      type(interaction_t), allocatable :: interactions(:)
+      type(contact_pair_t), allocatable :: pairs(:)
+      type(contact_controls_t) :: controls
    end type model_t
 
 contains
