@@ -1,0 +1,155 @@
+"""Deck text: keywords, ids, continuation lines, surfaces; Gmsh import."""
+import re
+import numpy as np
+from pathlib import Path
+
+from vctools.mesh.deck import write_deck
+from vctools.mesh.gmsh import read_msh
+from vctools.mesh.mesh import Mesh
+from vctools.mesh.cli import main
+
+SCENES = Path(__file__).resolve().parents[1] / "scenes"
+
+
+def parse(text):
+    """A minimal reader of what we write: blocks by keyword, data lines joined on commas."""
+    blocks, cur = [], None
+    pending = ""
+    for line in text.splitlines():
+        assert len(line) < 200
+        if line.startswith("**"):
+            continue
+        if line.startswith("*"):
+            cur = [line, []]
+            blocks.append(cur)
+            continue
+        pending += line
+        if line.rstrip().endswith(","):
+            continue
+        cur[1].append([t.strip() for t in pending.split(",")])
+        pending = ""
+    return blocks
+
+
+def test_big_cell_continues_lines_and_ids(tmp_path):
+    n = 40
+    ang = 2 * np.pi * np.arange(n) / n
+    nodes = np.column_stack([np.cos(ang), np.sin(ang)])
+    m = Mesh(nodes, np.array([0, n]), np.arange(n), np.zeros(1, int), [("P", "VPE")])
+    m.nsets["ALL"] = np.arange(n)
+    m.esurfaces["RIM"] = (np.zeros(n, int), np.arange(1, n + 1))
+    text = write_deck(m, tmp_path / "p.inp", ["hello"])
+    assert text.endswith("\n") and text.startswith("** hello\n")
+    blocks = parse(text)
+    assert blocks[0][0] == "*NODE, NSET=NALL"
+    assert [float(x) for x in blocks[0][1][3][1:]] == list(nodes[3])     # full precision
+    assert blocks[1][0] == "*ELEMENT, TYPE=VPE, ELSET=P"
+    assert blocks[1][1][0] == ["1"] + [str(i) for i in range(1, n + 1)]
+    assert [len(r) for r in blocks[2][1]] == [16, 16, 8]
+    assert blocks[3][1][-1] == ["1", f"S{n}"]
+
+
+def test_paper_scenes_write_consistent_decks(tmp_path):
+    assert main(["paper", "--scenes", str(SCENES), "-o", str(tmp_path)]) == 0
+    files = sorted(tmp_path.glob("*.inp"))
+    assert len(files) == 18 + 6 + 7 + 1
+    total = 0
+    for f in files:
+        text = f.read_text()
+        total += len(text)
+        assert len(text) < 1_000_000 and text.endswith("\n")
+        blocks = parse(text)
+        nodes = {int(r[0]) for b in blocks if b[0].startswith("*NODE") for r in b[1]}
+        elems = {}
+        for b in blocks:
+            if b[0].startswith("*ELEMENT"):
+                for r in b[1]:
+                    assert int(r[0]) not in elems
+                    elems[int(r[0])] = [int(x) for x in r[1:]]
+                    assert set(elems[int(r[0])]) <= nodes
+        assert sorted(nodes) == list(range(1, len(nodes) + 1))
+        for b in blocks:
+            if b[0].startswith("*SURFACE") and "TYPE=ELEMENT" in b[0]:
+                for eid, side in b[1]:
+                    k = int(side[1:])
+                    assert 1 <= k <= len(elems[int(eid)])
+            if b[0].startswith("*NSET") or "TYPE=NODE" in b[0]:
+                for r in b[1]:
+                    assert {int(x) for x in r} <= nodes
+        if "fem" in f.name or "quad" in f.name or "tri" in f.name:
+            types = re.findall(r"TYPE=(\w+), ELSET", text)
+            assert set(types) <= ({"CPE4", "CPE3"} if "fem" in f.name else {"VPE"})
+    assert total < 5_000_000
+
+
+MSH = """$MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+3
+1 1 "bottom"
+2 2 "plate"
+0 3 "corner"
+$EndPhysicalNames
+$Entities
+1 1 1 0
+1 0 0 0 1 3
+1 0 0 0 2 0 0 1 1 2 1 -2
+1 0 0 0 2 1 0 1 2 1 1
+$EndEntities
+$Nodes
+3 6 1 6
+0 1 0 1
+1
+0 0 0
+1 1 0 2
+2
+3
+1 0 0
+2 0 0
+2 1 0 3
+4
+5
+6
+2 1 0
+1 1 0
+0 1 0
+$EndNodes
+$Elements
+4 6 1 6
+0 1 15 1
+1 1
+1 1 1 2
+2 1 2
+3 2 3
+2 1 3 1
+4 1 2 5 6
+2 1 2 2
+5 2 3 4
+6 2 4 5
+$EndElements
+"""
+
+
+def test_gmsh_import(tmp_path):
+    p = tmp_path / "m.msh"
+    p.write_text(MSH)
+    m = read_msh(p)
+    assert m.ncell == 3 and [b[0] for b in m.bodies] == ["plate"]
+    assert (m.cell_areas() > 0).all() and abs(m.cell_areas().sum() - 2.0) < 1e-14
+    assert np.allclose(m.nodes[m.nsets["bottom"], 1], 0) and len(m.nsets["bottom"]) == 3
+    cells, sides = m.esurfaces["bottom"]
+    assert len(cells) == 2
+    for c, s in zip(cells, sides):
+        cc = m.cell(c)
+        assert np.allclose(m.nodes[[cc[s - 1], cc[s % len(cc)]], 1], 0)
+    assert np.allclose(m.nodes[m.nsets["corner"]], [[0, 0]])
+    assert main(["gmsh", str(p), "-o", str(tmp_path / "m.inp"), "--formulation", "fem"]) == 0
+    text = (tmp_path / "m.inp").read_text()
+    assert "*ELEMENT, TYPE=CPE4, ELSET=plate" in text and "*ELEMENT, TYPE=CPE3, ELSET=plate" in text
+
+
+def test_gmsh_wrong_version(tmp_path):
+    p = tmp_path / "old.msh"
+    p.write_text("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n")
+    assert main(["gmsh", str(p)]) == 2

@@ -1,0 +1,334 @@
+"""The mesh container and the operations on it that do not depend on how it was made.
+
+Cells are stored flat (CSR): cell i has node indices conn[ptr[i]:ptr[i+1]], 0-based,
+counter-clockwise; side k (1-based) runs from its node k to node k+1 (last to first).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from .errors import MeshError
+
+
+@dataclass
+class Mesh:
+    nodes: np.ndarray                       # (N, 2)
+    ptr: np.ndarray                         # (ncell + 1,)
+    conn: np.ndarray                        # (ptr[-1],)
+    cell_body: np.ndarray                   # (ncell,) index into bodies
+    bodies: list = field(default_factory=list)      # [(name, element type)]
+    nsets: dict = field(default_factory=dict)       # name -> node indices
+    elsets: dict = field(default_factory=dict)      # name -> cell indices
+    esurfaces: dict = field(default_factory=dict)   # name -> (cells, sides 1-based)
+    nsurfaces: dict = field(default_factory=dict)   # name -> node indices
+    info: dict = field(default_factory=dict)        # joints, Lloyd history... for reports/tests
+
+    @property
+    def ncell(self):
+        return len(self.ptr) - 1
+
+    def cell(self, i):
+        return self.conn[self.ptr[i]:self.ptr[i + 1]]
+
+    def cell_index(self):
+        return np.repeat(np.arange(self.ncell), np.diff(self.ptr))
+
+    def next_index(self):
+        nxt = np.arange(len(self.conn)) + 1
+        nxt[self.ptr[1:] - 1] = self.ptr[:-1]
+        return nxt
+
+    def cell_areas(self):
+        xy = self.nodes[self.conn]
+        nx = xy[self.next_index()]
+        cr = xy[:, 0] * nx[:, 1] - xy[:, 1] * nx[:, 0]
+        return 0.5 * np.add.reduceat(cr, self.ptr[:-1]) if len(cr) else np.zeros(0)
+
+    def edges(self):
+        """Directed edges (a, b, cell, side) of every cell."""
+        a = self.conn
+        b = self.conn[self.next_index()]
+        cell = self.cell_index()
+        side = np.arange(len(self.conn)) - self.ptr[cell] + 1
+        return a, b, cell, side
+
+    def boundary_edge_mask(self):
+        a, b, _, _ = self.edges()
+        lo, hi = np.minimum(a, b), np.maximum(a, b)
+        key = lo.astype(np.int64) * (len(self.nodes) + 1) + hi
+        _, inv, cnt = np.unique(key, return_inverse=True, return_counts=True)
+        return cnt[inv] == 1
+
+
+def concatenate(meshes):
+    """Disjoint union: node and cell indices are offset, names must not clash."""
+    nodes, ptrs, conns, cb = [], [], [np.zeros(0, np.int64)], []
+    bodies, out = [], Mesh(np.zeros((0, 2)), np.zeros(1, np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64))
+    noff = coff = boff = 0
+    ptrs = [np.zeros(1, np.int64)]
+    for m in meshes:
+        nodes.append(m.nodes)
+        conns.append(m.conn + noff)
+        ptrs.append(m.ptr[1:] + ptrs[-1][-1])
+        cb.append(m.cell_body + boff)
+        bodies += m.bodies
+        for dst, src, off in ((out.nsets, m.nsets, noff), (out.nsurfaces, m.nsurfaces, noff),
+                              (out.elsets, m.elsets, coff)):
+            for k, v in src.items():
+                if k in dst:
+                    raise MeshError(f"name {k!r} is used twice")
+                dst[k] = v + off
+        for k, (c, s) in m.esurfaces.items():
+            if k in out.esurfaces:
+                raise MeshError(f"surface {k!r} is used twice")
+            out.esurfaces[k] = (c + coff, s)
+        for k, v in m.info.items():
+            if isinstance(v, list):
+                out.info.setdefault(k, []).extend(v)
+            else:
+                out.info[k] = v
+        noff += len(m.nodes)
+        coff += m.ncell
+        boff += len(m.bodies)
+    out.nodes = np.concatenate(nodes) if nodes else np.zeros((0, 2))
+    out.ptr = np.concatenate(ptrs)
+    out.conn = np.concatenate(conns)
+    out.cell_body = np.concatenate(cb) if cb else np.zeros(0, np.int64)
+    out.bodies = bodies
+    names = [b[0] for b in bodies]
+    if len(set(names)) != len(names):
+        raise MeshError(f"body names must be unique, got {names}")
+    return out
+
+
+def merge_points(xy, tol):
+    """Merge coordinates closer than tol: (unique points, inverse index)."""
+    u, inv = np.unique(xy, axis=0, return_inverse=True)
+    inv = inv.ravel()
+    if len(u) > 1:
+        pairs = cKDTree(u).query_pairs(tol, output_type="ndarray")
+        if len(pairs):
+            g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(u), len(u)))
+            _, lab = connected_components(g, directed=False)
+            first = np.full(lab.max() + 1, -1)
+            # representative: the lowest index of each group (deterministic)
+            idx = np.arange(len(u))[::-1]
+            first[lab[idx]] = idx
+            rep = first[lab]
+            keep, newid = np.unique(rep, return_inverse=True)
+            return u[keep], newid[inv]
+    return u, inv
+
+
+def merge_close(xy, tol):
+    """Merge points closer than tol (no exact-duplicate pass): (points, index map)."""
+    n = len(xy)
+    if n < 2:
+        return xy.copy(), np.arange(n)
+    pairs = cKDTree(xy).query_pairs(tol, output_type="ndarray")
+    if len(pairs) == 0:
+        return xy.copy(), np.arange(n)
+    g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, lab = connected_components(g, directed=False)
+    first = np.full(lab.max() + 1, -1)
+    idx = np.arange(n)[::-1]
+    first[lab[idx]] = idx
+    rep = first[lab]
+    keep, newid = np.unique(rep, return_inverse=True)
+    return xy[keep], newid
+
+
+def from_polygons(ptr, xy, cell_body, bodies, tol):
+    """Conforming mesh from polygons given by coordinates (merged within tol)."""
+    nodes, conn = merge_points(xy, tol)
+    return _compact(Mesh(nodes, ptr.astype(np.int64), conn.astype(np.int64), np.asarray(cell_body), bodies))
+
+
+def _compact(m):
+    """Drop repeated consecutive nodes in cells and cells left with fewer than 3 nodes."""
+    nxt = m.next_index()
+    keep = m.conn != m.conn[nxt]
+    cell = m.cell_index()
+    cnt = np.bincount(cell[keep], minlength=m.ncell)
+    good = cnt >= 3
+    keep &= good[cell]
+    conn = m.conn[keep]
+    ptr = np.concatenate([[0], np.cumsum(cnt[good])])
+    m.conn, m.ptr, m.cell_body = conn, ptr, m.cell_body[good]
+    used = np.zeros(len(m.nodes), bool)
+    used[conn] = True
+    if not used.all():
+        new = np.cumsum(used) - 1
+        m.nodes = m.nodes[used]
+        m.conn = new[m.conn]
+    return m
+
+
+def insert_hanging_nodes(m, candidates, tol):
+    """Make the mesh conforming: a node lying inside an edge of a cell is added to that cell.
+
+    Only nodes in `candidates` (those created by clipping and cutting) are tested, against
+    the edges of cells that touch a candidate (a hanging node on an edge always shares the
+    edge's end nodes with the cell that created it).
+    """
+    candidates = np.unique(candidates)
+    if len(candidates) == 0:
+        return m
+    mark = np.zeros(len(m.nodes), bool)
+    mark[candidates] = True
+    cell = m.cell_index()
+    touch = np.zeros(m.ncell, bool)
+    touch[cell[mark[m.conn]]] = True
+    tree = cKDTree(m.nodes[candidates])
+    inserts = {}
+    nxt = m.next_index()
+    for c in np.flatnonzero(touch):
+        s, e = m.ptr[c], m.ptr[c + 1]
+        for k in range(s, e):
+            a, b = m.conn[k], m.conn[nxt[k]]
+            pa, pb = m.nodes[a], m.nodes[b]
+            mid, half = 0.5 * (pa + pb), 0.5 * np.hypot(*(pb - pa))
+            hits = tree.query_ball_point(mid, half + tol)
+            if not hits:
+                continue
+            ab = pb - pa
+            L2 = ab @ ab
+            found = []
+            for h in hits:
+                v = candidates[h]
+                if v in m.conn[s:e]:
+                    continue
+                p = m.nodes[v]
+                t = (p - pa) @ ab / L2
+                if 0.0 < t < 1.0:
+                    d = abs(ab[0] * (p[1] - pa[1]) - ab[1] * (p[0] - pa[0])) / np.sqrt(L2)
+                    if d <= tol:
+                        found.append((t, v))
+            if found:
+                inserts[(c, k - s)] = [v for _, v in sorted(found)]
+    if not inserts:
+        return m
+    newconn, newptr = [], [0]
+    for c in range(m.ncell):
+        cc = m.conn[m.ptr[c]:m.ptr[c + 1]]
+        if not touch[c]:
+            newconn.append(cc)
+        else:
+            lst = []
+            for k, v in enumerate(cc):
+                lst.append(v)
+                lst.extend(inserts.get((c, k), ()))
+            newconn.append(np.asarray(lst, np.int64))
+        newptr.append(newptr[-1] + len(newconn[-1]))
+    m.conn = np.concatenate(newconn)
+    m.ptr = np.asarray(newptr, np.int64)
+    return m
+
+
+def node_line_distance(nodes, polyline):
+    from .geometry import distance_to_segments
+    segs = np.stack([polyline[:-1], polyline[1:]], 1)
+    return distance_to_segments(nodes, segs)
+
+
+def split_joint(m, name, polyline, master_side, tol):
+    """Duplicate the nodes on a joint and write its two faces.
+
+    Around each joint node the incident cells are grouped: two cells are in one group when
+    they share an edge at the node that is not a joint edge.  Each group gets its own copy
+    of the node; a tip (the joint ends inside the body) has one group and stays shared.
+    The faces: element sides on the master side (left or right of the polyline's
+    direction), nodes on the slave side (the tip excluded: it cannot open).
+    """
+    polyline = np.asarray(polyline, float)
+    dnode = node_line_distance(m.nodes, polyline)
+    on = dnode <= tol
+    a, b, cell, side = m.edges()
+    cand = on[a] & on[b]
+    mid = 0.5 * (m.nodes[a[cand]] + m.nodes[b[cand]])
+    ok = node_line_distance(mid, polyline) <= tol if len(mid) else np.zeros(0, bool)
+    jidx = np.flatnonzero(cand)[ok]
+    if len(jidx) == 0:
+        raise MeshError(f"joint {name!r}: no cell edge lies on it")
+    jkey = set()
+    for e in jidx:
+        jkey.add((min(a[e], b[e]), max(a[e], b[e])))
+    jnodes = np.unique(np.concatenate([a[jidx], b[jidx]]))
+    # node -> incident (cell, position)
+    order = np.argsort(m.conn, kind="stable")
+    sorted_nodes = m.conn[order]
+    nxt = m.next_index()
+    prv = np.empty_like(nxt)
+    prv[nxt] = np.arange(len(nxt))
+    copies = {}
+    new_nodes = []
+    conn = m.conn.copy()
+    for v in jnodes:
+        lo, hi = np.searchsorted(sorted_nodes, [v, v + 1])
+        pos = order[lo:hi]
+        cells = cell[pos]
+        parent = list(range(len(pos)))
+
+        def find(i):
+            while parent[i] != i:
+                parent[i] = parent[parent[i]]
+                i = parent[i]
+            return i
+        by_edge = {}
+        for i, p in enumerate(pos):
+            for u in (m.conn[nxt[p]], m.conn[prv[p]]):
+                key = (min(v, u), max(v, u))
+                if key in jkey:
+                    continue
+                if key in by_edge:
+                    ra, rb = find(i), find(by_edge[key])
+                    parent[ra] = rb
+                else:
+                    by_edge[key] = i
+        roots = sorted({find(i) for i in range(len(pos))}, key=lambda r: min(cells[i] for i in range(len(pos)) if find(i) == r))
+        copies[v] = [v]
+        for r in roots[1:]:
+            nid = len(m.nodes) + len(new_nodes)
+            new_nodes.append(m.nodes[v])
+            copies[v].append(nid)
+            for i in range(len(pos)):
+                if find(i) == r:
+                    conn[pos[i]] = nid
+    if new_nodes:
+        m.nodes = np.concatenate([m.nodes, np.asarray(new_nodes)])
+    m.conn = conn
+    # faces, from the updated connectivity
+    a2, b2 = conn[jidx], conn[nxt[jidx]]
+    segs = np.stack([polyline[:-1], polyline[1:]], 1)
+    mids = 0.5 * (m.nodes[a2] + m.nodes[b2])
+    # direction of the nearest polyline segment at each joint edge
+    best = np.full(len(mids), np.inf)
+    dirs = np.zeros((len(mids), 2))
+    for s0, s1 in segs:
+        from .geometry import point_segment_distance
+        d = point_segment_distance(mids, s0, s1)
+        mm = d < best
+        best[mm] = d[mm]
+        dirs[mm] = s1 - s0
+    along = ((m.nodes[b2] - m.nodes[a2]) * dirs).sum(1) > 0   # cell lies left of a->b
+    left = along
+    is_master = left if master_side == "left" else ~left
+    mcells, msides = cell[jidx][is_master], side[jidx][is_master]
+    snodes = np.unique(np.concatenate([a2[~is_master], b2[~is_master]]))
+    mnodes = np.unique(np.concatenate([a2[is_master], b2[is_master]]))
+    shared = np.intersect1d(snodes, mnodes)
+    snodes = np.setdiff1d(snodes, shared)
+    o = np.lexsort((msides, mcells))
+    m.esurfaces[f"{name}_MASTER"] = (mcells[o], msides[o])
+    m.nsurfaces[f"{name}_SLAVE"] = snodes
+    m.nsets[f"{name}_SLAVE"] = snodes
+    m.nsets[f"{name}_MASTER"] = mnodes
+    m.info.setdefault("joints", []).append(
+        {"name": name, "polyline": polyline, "copies": copies, "shared": shared,
+         "master": (mcells[o], msides[o]), "slave": snodes})
+    return m
