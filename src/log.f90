@@ -1,6 +1,6 @@
 !> Run log: every line goes to the screen and to JOB.log; phase timings use the
 !> wall clock so that they add up to what the user waits for.
-module vemcontact_app_log
+module vemcontact_log
    use vemcontact_kinds, only: wp
    use vemcontact_clock, only: wall_time
    use vemcontact_error, only: error_t, fatal_error, err_io
@@ -59,4 +59,4 @@ contains
       if (self%unit >= 0) close (self%unit)
       self%unit = -1
    end subroutine logger_close
-end module vemcontact_app_log
+end module vemcontact_log

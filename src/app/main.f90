@@ -6,7 +6,7 @@ program vemcontact_main
    use vemcontact_error, only: error_t
    use vemcontact_model, only: model_t
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
-   use vemcontact_app_log, only: logger_t
+   use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    use vemcontact_app_process, only: exit_process, make_directory
    use vemcontact_deck_reader, only: read_deck

@@ -4,7 +4,7 @@
 module vemcontact_driver_static
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t
-   use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon
+   use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic
    use vemcontact_sparse_mmio, only: write_matrix_market
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
@@ -13,7 +13,7 @@ module vemcontact_driver_static
    use vemcontact_output_vtu, only: write_vtu
    use vemcontact_output_pvd, only: write_pvd
    use vemcontact_output_hdf5, only: h5_writer_t
-   use vemcontact_app_log, only: logger_t
+   use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    implicit none
    private
@@ -37,7 +37,7 @@ contains
       type(linear_system_t) :: sys
       type(load_state_t) :: st
       type(h5_writer_t) :: h5
-      real(wp), allocatable :: u(:), s_elem(:, :), s_node(:, :), times(:)
+      real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:)
       type(string_t), allocatable :: vtu_files(:)
       real(wp) :: t0
       integer :: istep
@@ -72,6 +72,8 @@ contains
 
       call init_load_state(model, st)
       allocate (u(2*model%nnode), s_elem(4, model%nelem), s_node(4, model%nnode))
+      ! displacements are reported relative to the end of a geostatic step
+      allocate (u_ref(2*model%nnode), source=0.0_wp)
       allocate (vtu_files(0), times(0))
       do istep = 1, size(model%steps)
          name = step_name(istep)
@@ -86,24 +88,31 @@ contains
             if (allocated(error)) return
          end if
 
+         if (model%steps(istep)%procedure == procedure_geostatic) then
+            u_ref = u
+            call log%say('  geostatic step: its displacements are the reference (reported as zero), '// &
+                         'its stresses are kept')
+         end if
+         u_out = u - u_ref
+
          t0 = wall_time()
          call element_stresses(model, u, s_elem)
          call nodal_average(model, s_elem, s_node)
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)
-         call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u, [2, int(model%nnode)]), &
+         call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
                         s_elem, s_node, error)
          if (allocated(error)) return
          vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
          times = [times, real(istep, wp)]
          call write_pvd(base//'.pvd', vtu_files, times, error)
          if (allocated(error)) return
-         call h5%write_step(istep, name, real(istep, wp), reshape(u, [2, int(model%nnode)]), &
+         call h5%write_step(istep, name, real(istep, wp), reshape(u_out, [2, int(model%nnode)]), &
                             s_elem, s_node, error)
          if (allocated(error)) return
          call log%phase('write', wall_time() - t0)
-         write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(u(1::2))), &
-            ', max |u_y| ', maxval(abs(u(2::2))), ', rcond ', sys%solver%rcond()
+         write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(u_out(1::2))), &
+            ', max |u_y| ', maxval(abs(u_out(2::2))), ', rcond ', sys%solver%rcond()
          call log%say(trim(buf))
       end do
       call h5%close()

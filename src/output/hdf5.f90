@@ -11,7 +11,7 @@
 !> that is the fastest to write and to read back in slices.
 module vemcontact_output_hdf5
    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_null_ptr
-   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fclose_f, &
+   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5lexists_f, h5fcreate_f, h5fclose_f, &
                    h5fflush_f, h5gcreate_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
                    h5sclose_f, h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, &
                    h5aclose_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
@@ -41,6 +41,7 @@ module vemcontact_output_hdf5
       procedure :: open => h5_open
       procedure :: write_mesh => h5_write_mesh
       procedure :: write_step => h5_write_step
+      procedure :: write_contact => h5_write_contact
       procedure :: close => h5_close
       procedure :: is_open => h5_is_open
       final :: h5_final
@@ -195,6 +196,52 @@ contains
       call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
       if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_step
+
+   !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
+   !> undeformed coordinates, COPEN, CPRESS and STATUS (1 closed, 0 open); then flush.
+   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, status, error)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep, ipair
+      integer(ip), intent(in) :: node_id(:)
+      real(wp), intent(in) :: x(:, :), copen(:), cpress(:)
+      integer, intent(in) :: status(:)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: gname
+      character(len=24) :: buf
+      integer(hid_t) :: grp
+      integer(ip), allocatable :: st(:)
+      integer :: hdferr
+      logical :: exists
+      if (.not. check_open(self, 'write_contact', error)) return
+      if (istep <= 9999) then
+         write (buf, '(i4.4)') istep
+      else
+         write (buf, '(i0)') istep
+      end if
+      gname = '/steps/'//trim(buf)//'/contact'
+      call h5lexists_f(self%file, gname, exists, hdferr)
+      if (failed(self, hdferr, 'looking up '//gname, error)) return
+      if (.not. exists) then
+         call h5gcreate_f(self%file, gname, grp, hdferr)
+         if (failed(self, hdferr, 'creating group '//gname, error)) return
+         call h5gclose_f(grp, hdferr)
+      end if
+      write (buf, '(i0)') ipair
+      gname = gname//'/pair_'//trim(buf)
+      call h5gcreate_f(self%file, gname, grp, hdferr)
+      if (failed(self, hdferr, 'creating group '//gname, error)) return
+      st = int(status, ip)
+      call put_int(self, grp, 'node_ids', shape(node_id, hsize_t), node_id, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'coordinates', shape(x, hsize_t), x, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
+      if (.not. allocated(error)) call put_int(self, grp, 'STATUS', shape(st, hsize_t), st, error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group '//gname, error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing after '//gname, error)) return
+   end subroutine h5_write_contact
 
    !> Close the file (nothing if not open).  Without `error`, a failure to close is
    !> ignored: use the argument where the file's completeness matters.

@@ -19,11 +19,14 @@ contains
    !> `files` are paths as the program uses them (absolute, or relative to the
    !> working directory like `path`); they are converted to paths relative to
    !> the folder of `path`.
-   subroutine write_pvd(path, files, times, error)
+   subroutine write_pvd(path, files, times, error, parts)
       character(len=*), intent(in) :: path
       type(string_t), intent(in) :: files(:)
       real(wp), intent(in) :: times(:)
       type(error_t), allocatable, intent(out) :: error
+      !> ParaView part of each file (default 0): the mesh is part 0, contact points part 1
+      integer, intent(in), optional :: parts(:)
+      character(len=12) :: pbuf
       character(len=:), allocatable :: tmp, dir, rel, text
       character(len=32) :: tbuf
       character(len=512) :: msg
@@ -49,7 +52,9 @@ contains
          end if
          ! 17 significant digits: the time reads back as the same double
          write (tbuf, '(es24.16e3)') times(k)
-         text = text//'<DataSet timestep="'//trim(adjustl(tbuf))//'" group="" part="0" file="' &
+         pbuf = '0'
+         if (present(parts)) write (pbuf, '(i0)') parts(k)
+         text = text//'<DataSet timestep="'//trim(adjustl(tbuf))//'" group="" part="'//trim(pbuf)//'" file="' &
                 //xml_escape(rel)//'"/>'//nl
       end do
       text = text//'</Collection>'//nl//'</VTKFile>'//nl

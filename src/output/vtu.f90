@@ -21,7 +21,7 @@ module vemcontact_output_vtu
    implicit none
    private
 
-   public :: write_vtu, replace_file
+   public :: write_vtu, replace_file, put, put_array, byte_order, int_type_name, itoa
 
    !> VTK cell type of every element.
    integer, parameter :: vtk_polygon = 7

@@ -1,0 +1,108 @@
+!> Contact results of one pair in one step: a CSV table and a VTU point set of
+!> the slave nodes (vertex cells), so that ParaView shows them beside the mesh.
+!> Columns/fields: node id, coordinates (undeformed), COPEN (normal gap, positive
+!> open, negative = penetration), CPRESS (contact pressure, positive in
+!> compression: penalty force / (tributary length * thickness)), STATUS (1 closed,
+!> 0 open), PAIR (pair number).
+module vemcontact_output_contact
+   use vemcontact_kinds, only: wp, ip, i8
+   use vemcontact_error, only: error_t, fatal_error, err_io
+   use vemcontact_output_base64, only: as_bytes
+   use vemcontact_output_vtu, only: put, put_array, byte_order, int_type_name, itoa, replace_file
+   implicit none
+   private
+
+   public :: contact_table_t, write_contact_csv, write_contact_vtu
+
+   !> The slave nodes of one or more pairs and their results.
+   type :: contact_table_t
+      integer(ip), allocatable :: node_id(:)
+      real(wp), allocatable :: x(:, :)        !< (2, n) undeformed coordinates
+      real(wp), allocatable :: copen(:)
+      real(wp), allocatable :: cpress(:)
+      integer, allocatable :: status(:)       !< 1 closed, 0 open
+      integer, allocatable :: pair(:)
+      integer(ip), allocatable :: node(:)     !< internal node index (for the driver)
+   end type contact_table_t
+
+contains
+
+   !> CSV of the entries of `tab` that belong to pair `ipair`, full precision.
+   subroutine write_contact_csv(path, tab, ipair, error)
+      character(len=*), intent(in) :: path
+      type(contact_table_t), intent(in) :: tab
+      integer, intent(in) :: ipair
+      type(error_t), allocatable, intent(out) :: error
+      integer :: unit, ios, k
+      character(len=512) :: msg
+      open (newunit=unit, file=path//'.tmp', status='replace', action='write', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
+         return
+      end if
+      write (unit, '(a)', iostat=ios) 'node,x,y,COPEN,CPRESS,STATUS'
+      do k = 1, size(tab%node_id)
+         if (tab%pair(k) /= ipair) cycle
+         if (ios /= 0) exit
+         write (unit, '(i0,4(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
+            tab%copen(k), tab%cpress(k), trim(merge('CLOSED', 'OPEN  ', tab%status(k) == 1))
+      end do
+      close (unit)
+      if (ios /= 0) then
+         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
+         return
+      end if
+      call replace_file(path//'.tmp', path, error)
+   end subroutine write_contact_csv
+
+   !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, STATUS, PAIR, NODE_ID.
+   subroutine write_contact_vtu(path, tab, error)
+      character(len=*), intent(in) :: path
+      type(contact_table_t), intent(in) :: tab
+      type(error_t), allocatable, intent(out) :: error
+      character(len=1), parameter :: nl = new_line('a')
+      character(len=:), allocatable :: itype
+      character(len=512) :: msg
+      real(wp), allocatable :: xyz(:, :)
+      integer(ip), allocatable :: ibuf(:)
+      integer :: unit, ios
+      integer(ip) :: n, k
+      n = size(tab%node_id)
+      itype = int_type_name()
+      open (newunit=unit, file=path//'.tmp', access='stream', form='unformatted', status='replace', &
+            action='write', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
+         return
+      end if
+      call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0" byte_order="' &
+               //byte_order()//'" header_type="UInt64">'//nl//'<UnstructuredGrid>'//nl &
+               //'<Piece NumberOfPoints="'//itoa(int(n, i8))//'" NumberOfCells="'//itoa(int(n, i8))//'">'//nl &
+               //'<PointData>'//nl, ios)
+      call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios)
+      call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios)
+      ibuf = int(tab%status, ip)
+      call put_array(unit, 'type="'//itype//'" Name="STATUS"', as_bytes(ibuf), ios)
+      ibuf = int(tab%pair, ip)
+      call put_array(unit, 'type="'//itype//'" Name="PAIR"', as_bytes(ibuf), ios)
+      call put_array(unit, 'type="'//itype//'" Name="NODE_ID"', as_bytes(tab%node_id), ios)
+      call put(unit, '</PointData>'//nl//'<Points>'//nl, ios)
+      allocate (xyz(3, n))
+      xyz(1:2, :) = tab%x
+      xyz(3, :) = 0.0_wp
+      call put_array(unit, 'type="Float64" Name="Points" NumberOfComponents="3"', as_bytes(xyz), ios)
+      call put(unit, '</Points>'//nl//'<Cells>'//nl, ios)
+      ibuf = [(k - 1_ip, k=1, n)]
+      call put_array(unit, 'type="'//itype//'" Name="connectivity"', as_bytes(ibuf), ios)
+      ibuf = ibuf + 1_ip
+      call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios)
+      call put_array(unit, 'type="UInt8" Name="types"', repeat(achar(1), n), ios)   ! VTK_VERTEX
+      call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
+      close (unit)
+      if (ios /= 0) then
+         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
+         return
+      end if
+      call replace_file(path//'.tmp', path, error)
+   end subroutine write_contact_vtu
+end module vemcontact_output_contact
