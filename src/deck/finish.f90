@@ -1,12 +1,13 @@
 !> Checks and resolution after the whole deck is read: exact-size arrays,
 !> duplicate ids, element connectivity from user node ids to internal indices,
 !> sorted sets, sections applied to elements (exactly one each), materials,
-!> GRAV densities, and the steps.
+!> GRAV densities, contact pairs, and the steps.
 module vemcontact_deck_finish
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, source_loc_t, string_t, etype_polygon, form_vem, form_fem
    use vemcontact_deck_state, only: deck_parser_t, err_at, loc_str
    use vemcontact_deck_loads, only: end_step, acc_to_step
+   use vemcontact_deck_contact, only: finish_contact
    use vemcontact_deck_idmap, only: sort_unique
    use vemcontact_deck_fields, only: int_str, edit_distance
    implicit none
@@ -41,6 +42,7 @@ contains
       call finish_sets(p, model)
       call apply_sections(p, model)
       call check_grav(p, model)
+      call finish_contact(p, model)
       call acc_to_step(p%init, model%initial)
       model%initial%name = 'initial'
       if (p%nstep == 0) allocate (model%steps(0))

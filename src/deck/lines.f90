@@ -3,14 +3,14 @@
 !> data lines, as in CalculiX), validating a keyword line against the registry,
 !> and skipping data lines.
 module vemcontact_deck_lines
-   use vemcontact_kinds, only: ip
+   use vemcontact_kinds, only: ip, wp
    use vemcontact_deck_state, only: deck_parser_t, err_here
    use vemcontact_deck_source, only: line_keyword, line_data, push_ok, directory_of
    use vemcontact_deck_fields, only: keyword_line_t, parse_keyword_line, to_upper, squeeze
    use vemcontact_deck_registry, only: keywords, param_spec_t, find_param, param_suggestion, &
                                        allowed_value, kw_include, par_flag, par_value, &
-                                       val_name, val_int, params
-   use vemcontact_deck_numbers, only: parse_int, num_ok
+                                       val_name, val_int, val_real, params
+   use vemcontact_deck_numbers, only: parse_int, parse_real, num_ok, number_problem
    implicit none
    private
 
@@ -62,6 +62,7 @@ contains
       logical :: found, bad
       integer :: k, j, stat
       integer(ip) :: ival
+      real(wp) :: rval
       character(len=:), allocatable :: kname, blanked
       kname = '*'//trim(keywords(id)%name)
       blanked = ' '
@@ -103,6 +104,13 @@ contains
                              ' must be a positive integer, found '''//kw%pvalue(k)%s//'''')
                bad = .true.
             end if
+         else if (.not. bad .and. spec%vkind == val_real) then
+            call parse_real(squeeze(kw%pvalue(k)%s), rval, stat)
+            if (stat /= num_ok) then
+               call err_here(p, number_problem(stat, kw%pvalue(k)%s, &
+                                               'parameter '//kw%pname(k)%s//' of '//kname))
+               bad = .true.
+            end if
          end if
          if (bad) then
             if (spec%required) ok = .false.
@@ -114,11 +122,11 @@ contains
          if (params(k)%keyword /= id .or. .not. params(k)%required) cycle
          found = .false.
          do j = 1, kw%nparam
-            if (kw%pname(j)%s == trim(params(k)%name)) found = .true.
+            if (kw%pname(j)%s == squeeze(params(k)%name)) found = .true.
          end do
          if (.not. found) then
             ! a parameter blanked above for a bad value was already reported
-            if (index(blanked, ' '//trim(params(k)%name)//' ') == 0) then
+            if (index(blanked, ' '//squeeze(params(k)%name)//' ') == 0) then
                call err_here(p, 'missing required parameter '//trim(params(k)%name)//' of '//kname, &
                              'write '//kname//', '//trim(params(k)%name)//'=...')
             end if

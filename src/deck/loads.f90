@@ -1,11 +1,12 @@
-!> Handlers of the step and load keywords: *STEP, *STATIC, *END STEP, *BOUNDARY,
-!> *CLOAD, *DLOAD, and of *HEADING.
+!> Handlers of the step and load keywords: *STEP, *STATIC, *GEOSTATIC, *END STEP,
+!> *BOUNDARY, *CLOAD, *DLOAD, and of *HEADING.
 !> Entries are kept in deck order; with OP=NEW the entries of that kind given
 !> earlier in the same step are dropped and the step's `*_new` flag is set, which
 !> tells the driver to drop those of earlier steps too (CalculiX semantics).
 module vemcontact_deck_loads
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure
+   use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure, &
+                               dload_hydrostatic, procedure_static, procedure_geostatic
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, here, &
                                     err_here, err_at, field, get_int, get_real, push_item, push_dof, &
                                     push_dload, node_index, elem_index, get_set, set_suggestion, &
@@ -18,8 +19,8 @@ module vemcontact_deck_loads
    implicit none
    private
 
-   public :: read_heading, read_boundary, read_cload, read_dload, start_step, read_static, end_step
-   public :: acc_to_step
+   public :: read_heading, read_boundary, read_cload, read_dload, start_step, read_procedure, end_step
+   public :: acc_to_step, field_nodes, field_elems
 
 contains
 
@@ -247,8 +248,10 @@ contains
       end do
    end subroutine read_cload
 
-   !> *DLOAD [, OP=MOD|NEW]; data lines: element or element set, GRAV, g, dx, dy [, dz = 0]
-   !> or element or element set, P<k>, p (pressure on side k).
+   !> *DLOAD [, OP=MOD|NEW]; data lines: element or element set, GRAV, g, dx, dy [, dz = 0],
+   !> element or element set, P<k>, p (pressure on side k), or element or element set,
+   !> HP<k>, p, y_zero, y_ref (Abaqus' hydrostatic pressure on side k: p at height y_ref,
+   !> falling linearly to zero at the free surface y_zero, zero above it).
    subroutine read_dload(p, model, kw)
       type(deck_parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: model
@@ -256,7 +259,7 @@ contains
       logical :: is_new, ok
       integer :: i, side, stat, nn
       integer(ip) :: iside, e
-      real(wp) :: mag, d(3), dnorm
+      real(wp) :: mag, d(3), dnorm, yzero, yref
       character(len=:), allocatable :: label
       type(item_list_t) :: elems
       type(dload_t) :: rec
@@ -299,7 +302,39 @@ contains
                call push_dload(p%cur%dload, p%cur%nd, rec)
                call add_grav(p, elems%a(i))
             end do
-         else if (len(label) >= 2 .and. label(1:1) == 'P') then
+         else if (len(label) >= 3 .and. label(1:min(2, len(label))) == 'HP') then
+            call parse_int(label(3:), iside, stat)
+            if (stat /= num_ok .or. iside < 1) then
+               call bad_label(label)
+               cycle
+            end if
+            if (p%f%n > 5) then
+               call err_here(p, 'too many fields on a hydrostatic pressure data line: expected '// &
+                             'element or set, HP<k>, p, y_zero, y_ref')
+               cycle
+            end if
+            call get_real(p, 3, 'hydrostatic pressure magnitude', mag, ok, required=.true.)
+            if (ok) call get_real(p, 4, 'free-surface height y_zero (zero pressure)', yzero, ok, required=.true.)
+            if (ok) call get_real(p, 5, 'reference height y_ref (where the pressure is the magnitude)', &
+                                  yref, ok, required=.true.)
+            if (.not. ok) cycle
+            if (yref > yzero) then
+               call err_here(p, 'the reference height y_ref = '//field(p, 5)//' lies above the free-surface '// &
+                             'height y_zero = '//field(p, 4)//', where the hydrostatic pressure is zero', hp_help())
+               cycle
+            else if (.not. yzero > yref) then
+               call err_here(p, 'the free-surface height y_zero and the reference height y_ref are equal ('// &
+                             field(p, 4)//', '//field(p, 5)//'): the pressure gradient is undefined', hp_help())
+               cycle
+            end if
+            side = iside
+            if (.not. sides_exist(side, label)) cycle
+            rec = dload_t(kind=dload_hydrostatic, side=side, magnitude=mag, dir=[yzero, yref])
+            do i = 1, elems%n
+               rec%elem = elems%a(i)
+               call push_dload(p%cur%dload, p%cur%nd, rec)
+            end do
+         else if (len(label) >= 2 .and. index(label, 'P') == 1) then   ! index: safe on an empty label
             call parse_int(label(2:), iside, stat)
             if (stat /= num_ok .or. iside < 1) then
                call bad_label(label)
@@ -312,19 +347,7 @@ contains
             call get_real(p, 3, 'pressure', mag, ok, required=.true.)
             if (.not. ok) cycle
             side = iside
-            ok = .true.
-            do i = 1, elems%n
-               e = elems%a(i)
-               nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
-               if (side > nn) then
-                  call err_here(p, 'element '//int_str(model%elem_id(e))//' has '//int_str(nn)// &
-                                ' sides, so there is no side '//label, &
-                                'side k runs from node k to node k+1 of the element')
-                  ok = .false.
-                  exit
-               end if
-            end do
-            if (.not. ok) cycle
+            if (.not. sides_exist(side, label)) cycle
             rec = dload_t(kind=dload_pressure, side=side, magnitude=mag, dir=0.0_wp)
             do i = 1, elems%n
                rec%elem = elems%a(i)
@@ -337,14 +360,39 @@ contains
    contains
       subroutine bad_label(lab)
          character(len=*), intent(in) :: lab
+         character(len=*), parameter :: labels = 'labels are GRAV, P1, P2, ... (pressure on side k) '// &
+                                         'and HP1, HP2, ... (hydrostatic pressure on side k)'
          if (len(lab) == 0) then
-            call err_here(p, 'missing load label on a *DLOAD data line', &
-                          'labels are GRAV and P1, P2, ... (pressure on side k)')
+            call err_here(p, 'missing load label on a *DLOAD data line', labels)
          else
-            call err_here(p, 'unsupported *DLOAD label '//lab, &
-                          'labels are GRAV and P1, P2, ... (pressure on side k)')
+            call err_here(p, 'unsupported *DLOAD label '//lab, labels)
          end if
       end subroutine bad_label
+
+      !> Whether every element of `elems` has side `k` (reported once if not).
+      logical function sides_exist(k, lab)
+         integer, intent(in) :: k
+         character(len=*), intent(in) :: lab
+         integer :: j
+         sides_exist = .true.
+         do j = 1, elems%n
+            e = elems%a(j)
+            nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
+            if (k > nn) then
+               call err_here(p, 'element '//int_str(model%elem_id(e))//' has '//int_str(nn)// &
+                             ' sides, so there is no side '//lab, &
+                             'side k runs from node k to node k+1 of the element')
+               sides_exist = .false.
+               return
+            end if
+         end do
+      end function sides_exist
+
+      pure function hp_help() result(h)
+         character(len=:), allocatable :: h
+         h = 'write "element or set, HPk, p, y_zero, y_ref" with y_ref below the free surface y_zero, '// &
+             'e.g. "UPSTREAM, HP4, 0.98, 100., 0." for water 100 m deep at y = 0 (MPa, m)'
+      end function hp_help
    end subroutine read_dload
 
    subroutine add_grav(p, e)
@@ -379,7 +427,7 @@ contains
                        'small-strain code', 'remove NLGEOM or write NLGEOM=NO')
       end if
       p%in_step = .true.
-      p%static_seen = .false.
+      p%procedure_seen = .false.
       p%step_loc = here(p)
       p%cur = step_acc_t()
       call get_param(kw, 'NAME', val, found)
@@ -391,24 +439,50 @@ contains
       if (has_param(kw, 'INC')) continue   ! accepted: a linear step needs one increment
    end subroutine start_step
 
-   !> *STATIC [, SOLVER=...]; optional data line (time increments) checked and ignored.
-   subroutine read_static(p)
+   !> *STATIC [, SOLVER=...] or, with `geostatic`, *GEOSTATIC (Abaqus): the procedure of the
+   !> step, exactly one per step.  The optional data line (time increments) is checked and ignored.
+   subroutine read_procedure(p, geostatic)
       type(deck_parser_t), intent(inout) :: p
+      logical, intent(in) :: geostatic
       integer :: k, nline
       real(wp) :: v
       logical :: ok
-      if (p%static_seen) call err_here(p, 'second *STATIC in the step started at '//loc_str(p, p%step_loc))
-      p%static_seen = .true.
+      character(len=:), allocatable :: kname, other
+      character(len=*), parameter :: one = 'a step has exactly one procedure: *STATIC, or *GEOSTATIC in the first step'
+      if (geostatic) then
+         kname = '*GEOSTATIC'
+      else
+         kname = '*STATIC'
+      end if
+      if (p%procedure_seen) then
+         other = '*STATIC'
+         if (p%cur%procedure == procedure_geostatic) other = '*GEOSTATIC'
+         if (other == kname) then
+            call err_here(p, 'second '//kname//' in the step started at '//loc_str(p, p%step_loc), one)
+         else
+            call err_here(p, kname//' in the step started at '//loc_str(p, p%step_loc)// &
+                          ', which already has '//other, one)
+         end if
+      else if (geostatic .and. p%nstep > 0) then
+         call err_here(p, 'a geostatic step must be the first step', &
+                       '*GEOSTATIC sets the initial state (e.g. under self-weight) that later steps '// &
+                       'are measured from; use *STATIC in step '//int_str(p%nstep + 1))
+      else if (geostatic) then
+         p%cur%procedure = procedure_geostatic
+      else
+         p%cur%procedure = procedure_static
+      end if
+      p%procedure_seen = .true.
       nline = 0
       do
          call advance(p)
          if (p%src%kind /= line_data) exit
          nline = nline + 1
-         if (nline == 2) call err_here(p, '*STATIC takes at most one data line')
+         if (nline == 2) call err_here(p, kname//' takes at most one data line')
          if (nline > 1) cycle
          call split_fields(p%src%text(1:p%src%length), p%f)
          if (p%f%n > 4) then
-            call err_here(p, 'too many fields on the *STATIC data line: expected at most 4 time values')
+            call err_here(p, 'too many fields on the '//kname//' data line: expected at most 4 time values')
             cycle
          end if
          do k = 1, p%f%n
@@ -416,7 +490,7 @@ contains
             if (.not. ok) exit
          end do
       end do
-   end subroutine read_static
+   end subroutine read_procedure
 
    !> *END STEP, or the implicit end of a step: store the step in the model.
    subroutine end_step(p, model)
@@ -424,8 +498,9 @@ contains
       type(model_t), intent(inout) :: model
       type(step_t), allocatable :: t(:)
       integer :: k
-      if (.not. p%static_seen) then
-         call err_at(p, p%step_loc, 'the step has no procedure', 'add *STATIC inside the step')
+      if (.not. p%procedure_seen) then
+         call err_at(p, p%step_loc, 'the step has no procedure', &
+                     'add *STATIC inside the step (or *GEOSTATIC, in the first step only)')
       end if
       allocate (t(p%nstep + 1))
       do k = 1, p%nstep
@@ -443,6 +518,7 @@ contains
       type(step_t), intent(inout) :: a
       type(step_t), intent(out) :: b
       call move_alloc(a%name, b%name)
+      b%procedure = a%procedure
       b%boundary_new = a%boundary_new
       b%cload_new = a%cload_new
       b%dload_new = a%dload_new
@@ -457,6 +533,7 @@ contains
       type(step_acc_t), intent(in) :: acc
       type(step_t), intent(inout) :: s
       if (allocated(acc%name)) s%name = acc%name
+      s%procedure = acc%procedure
       s%boundary_new = acc%bnew
       s%cload_new = acc%cnew
       s%dload_new = acc%dnew

@@ -11,12 +11,16 @@ module vemcontact_deck_parser
                                        known_keyword_list, ctx_model, ctx_step, &
                                        kw_heading, kw_node, kw_element, kw_nset, kw_elset, &
                                        kw_material, kw_elastic, kw_density, kw_solid_section, &
-                                       kw_boundary, kw_cload, kw_dload, kw_step, kw_static, kw_end_step
+                                       kw_boundary, kw_cload, kw_dload, kw_step, kw_static, kw_end_step, &
+                                       kw_surface, kw_surface_interaction, kw_surface_behavior, &
+                                       kw_contact_pair, kw_contact_controls, kw_geostatic
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
    use vemcontact_deck_loads, only: read_heading, read_boundary, read_cload, read_dload, start_step, &
-                                    read_static, end_step
+                                    read_procedure, end_step
+   use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
+                                      read_contact_pair, read_controls
    implicit none
    private
 
@@ -58,12 +62,15 @@ contains
             cycle
          end if
          if (id /= kw_elastic .and. id /= kw_density) p%cur_mat = 0
+         if (id /= kw_surface_behavior) p%cur_inter = 0
          call check_keyword(p, kw, id, ok)
          if (ok) call check_context(p, id, ok)
          if (.not. ok) then
             if (id == kw_solid_section) p%section_errors = .true.
             if (id == kw_element) p%element_errors = .true.
             if (id == kw_material) p%cur_mat = -1   ! its *ELASTIC and *DENSITY are dropped silently
+            if (id == kw_surface_interaction) p%cur_inter = -1   ! and its *SURFACE BEHAVIOR
+            if (id == kw_surface_behavior) call drop_behavior(p, model)
             call skip_data(p)
             cycle
          end if
@@ -97,7 +104,21 @@ contains
             call start_step(p, model, kw)
             call no_data(p, '*STEP')
          case (kw_static)
-            call read_static(p)
+            call read_procedure(p, .false.)
+         case (kw_geostatic)
+            call read_procedure(p, .true.)
+         case (kw_surface)
+            call read_surface(p, model, kw)
+         case (kw_surface_interaction)
+            call read_interaction(p, model, kw)
+            call no_data(p, '*SURFACE INTERACTION')
+         case (kw_surface_behavior)
+            call read_behavior(p, model, kw)
+         case (kw_contact_pair)
+            call read_contact_pair(p, kw)
+         case (kw_contact_controls)
+            call read_controls(p, model, kw)
+            call no_data(p, '*CONTACT CONTROLS')
          case (kw_end_step)
             call end_step(p, model)
             call no_data(p, '*END STEP')

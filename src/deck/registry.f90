@@ -18,7 +18,9 @@ module vemcontact_deck_registry
                                  kw_nset = 5, kw_elset = 6, kw_material = 7, kw_elastic = 8, &
                                  kw_density = 9, kw_solid_section = 10, kw_boundary = 11, &
                                  kw_cload = 12, kw_dload = 13, kw_step = 14, kw_static = 15, &
-                                 kw_end_step = 16
+                                 kw_end_step = 16, kw_surface = 17, kw_surface_interaction = 18, &
+                                 kw_surface_behavior = 19, kw_contact_pair = 20, kw_contact_controls = 21, &
+                                 kw_geostatic = 22
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -33,23 +35,24 @@ module vemcontact_deck_registry
    integer, parameter, public :: val_name = 1      !< upper case, blanks removed
    integer, parameter, public :: val_path = 2      !< kept as written
    integer, parameter, public :: val_int = 3       !< positive integer
+   integer, parameter, public :: val_real = 4      !< a finite real number, kept as written
 
    type :: keyword_spec_t
-      character(len=16) :: name      !< as written in decks, e.g. 'SOLID SECTION'
+      character(len=24) :: name      !< as written in decks, e.g. 'SOLID SECTION'
       integer :: context
       integer :: data
    end type keyword_spec_t
 
    type :: param_spec_t
       integer :: keyword
-      character(len=16) :: name
+      character(len=24) :: name      !< blanks allowed ('SMALL SLIDING'); compared without them
       integer :: kind
       logical :: required
       integer :: vkind
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(16) = [ &
+   type(keyword_spec_t), parameter :: keywords(22) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -65,9 +68,15 @@ module vemcontact_deck_registry
                                       keyword_spec_t('DLOAD', ctx_step, data_optional), &
                                       keyword_spec_t('STEP', ctx_model, data_none), &
                                       keyword_spec_t('STATIC', ctx_step, data_optional), &
-                                      keyword_spec_t('END STEP', ctx_step, data_none)]
+                                      keyword_spec_t('END STEP', ctx_step, data_none), &
+                                      keyword_spec_t('SURFACE', ctx_model, data_required), &
+                                      keyword_spec_t('SURFACE INTERACTION', ctx_model, data_none), &
+                                      keyword_spec_t('SURFACE BEHAVIOR', ctx_model, data_required), &
+                                      keyword_spec_t('CONTACT PAIR', ctx_model, data_required), &
+                                      keyword_spec_t('CONTACT CONTROLS', ctx_model, data_none), &
+                                      keyword_spec_t('GEOSTATIC', ctx_step, data_optional)]
 
-   type(param_spec_t), parameter :: params(20) = [ &
+   type(param_spec_t), parameter :: params(30) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -87,17 +96,29 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_static, 'SOLVER', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_step, 'NLGEOM', par_optvalue, .false., val_name, 'NO YES'), &
                                     param_spec_t(kw_step, 'INC', par_value, .false., val_int, ''), &
-                                    param_spec_t(kw_step, 'NAME', par_value, .false., val_path, '')]
+                                    param_spec_t(kw_step, 'NAME', par_value, .false., val_path, ''), &
+                                    param_spec_t(kw_surface, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_surface, 'TYPE', par_value, .false., val_name, 'ELEMENT NODE'), &
+                                    param_spec_t(kw_surface_interaction, 'NAME', par_value, .true., val_name, ''), &
+                                    ! checked by the handler, which tells supported from unknown values
+                                    param_spec_t(kw_surface_behavior, 'PRESSURE-OVERCLOSURE', par_value, .true., &
+                                                 val_name, ''), &
+                                    param_spec_t(kw_contact_pair, 'INTERACTION', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_contact_pair, 'TYPE', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_contact_pair, 'ADJUST', par_value, .false., val_path, ''), &
+                                    param_spec_t(kw_contact_pair, 'SMALL SLIDING', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_controls, 'MAXIT', par_value, .false., val_int, ''), &
+                                    param_spec_t(kw_contact_controls, 'TOLERANCE', par_value, .false., val_real, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(40) = [character(len=24) :: &
-                                   'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTACTPAIR', 'CONTROLS', &
+   character(len=24), parameter :: calculix_only(37) = [character(len=24) :: &
+                                   'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTACTPRINT', 'CONTROLS', &
                                    'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', 'ELPRINT', &
                                    'ELFILE', 'VISCO', 'EQUATION', 'EXPANSION', 'FILM', 'FREQUENCY', &
                                    'FRICTION', 'HEATTRANSFER', 'INITIALCONDITIONS', 'KINEMATIC', &
                                    'MPC', 'NODEFILE', 'NODEPRINT', 'NODEOUTPUT', 'ELEMENTOUTPUT', &
                                    'ORIENTATION', 'OUTPUT', 'PLASTIC', 'RESTART', 'SHELLSECTION', &
-                                   'SPECIFICHEAT', 'SURFACE', 'SURFACEINTERACTION', 'SURFACEBEHAVIOR', &
+                                   'SPECIFICHEAT', &
                                    'TEMPERATURE', 'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
 
 contains
@@ -122,7 +143,7 @@ contains
       found = .false.
       spec = params(1)
       do k = 1, size(params)
-         if (params(k)%keyword == kw .and. trim(params(k)%name) == name) then
+         if (params(k)%keyword == kw .and. squeeze(params(k)%name) == name) then
             spec = params(k)
             found = .true.
             return
@@ -196,12 +217,12 @@ contains
       character(len=*), intent(in) :: name
       character(len=:), allocatable :: help
       integer :: k, d, best
-      character(len=16) :: pbest
+      character(len=24) :: pbest
       best = huge(1)
       pbest = ''
       do k = 1, size(params)
          if (params(k)%keyword /= kw) cycle
-         d = edit_distance(name, trim(params(k)%name))
+         d = edit_distance(name, squeeze(params(k)%name))
          if (d < best) then
             best = d
             pbest = params(k)%name

@@ -7,7 +7,7 @@
 module vemcontact_deck_state
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, source_loc_t, named_set_t, dof_value_t, dload_t, &
-                               find_set
+                               find_set, procedure_static
    use vemcontact_deck_source, only: deck_source_t
    use vemcontact_deck_diagnostics, only: diag_t
    use vemcontact_deck_fields, only: field_list_t, edit_distance, to_upper, squeeze
@@ -17,7 +17,7 @@ module vemcontact_deck_state
    implicit none
    private
 
-   public :: deck_parser_t, item_list_t, step_acc_t, grav_ref_t
+   public :: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, pair_ref_t
    public :: here, err_here, err_at, loc_str, field, get_int, get_id, get_real
    public :: push_item, push_dof, push_dload, node_index, elem_index
    public :: get_set, set_suggestion, ref_kind, tidy_items
@@ -37,8 +37,15 @@ module vemcontact_deck_state
       type(dload_t), allocatable :: dload(:)
       integer :: nb = 0, nc = 0, nd = 0
       logical :: bnew = .false., cnew = .false., dnew = .false.  !< OP=NEW seen
+      integer :: procedure = procedure_static
       character(len=:), allocatable :: name
    end type step_acc_t
+
+   !> A *CONTACT PAIR data line; the names are resolved once the whole deck is read.
+   type :: pair_ref_t
+      character(len=:), allocatable :: slave, master, interaction  !< upper case
+      type(source_loc_t) :: loc
+   end type pair_ref_t
 
    !> A GRAV load on one element, checked for a density once sections are applied.
    type :: grav_ref_t
@@ -53,16 +60,20 @@ module vemcontact_deck_state
       integer(ip) :: node_cap = 0, elem_cap = 0, conn_cap = 0, nconn = 0
       type(id_map_t) :: node_map, elem_map
       integer :: nnset = 0, nelset = 0, nmat = 0, nsec = 0, nstep = 0
+      integer :: nsurf = 0, ninter = 0, npair = 0
       type(item_list_t), allocatable :: nset_items(:), elset_items(:), sec_items(:)
       integer :: cur_mat = 0                !< material that *ELASTIC and *DENSITY apply to
+      integer :: cur_inter = 0              !< interaction that *SURFACE BEHAVIOR applies to, -1 = dropped
       logical :: in_step = .false.
-      logical :: static_seen = .false.
+      logical :: procedure_seen = .false.   !< *STATIC or *GEOSTATIC in the current step
       logical :: section_errors = .false.   !< suppresses "no section" noise after a bad *SOLID SECTION
       logical :: element_errors = .false.   !< suppresses "no section" noise after a bad *ELEMENT
       type(source_loc_t) :: step_loc
       type(step_acc_t) :: init, cur
       type(grav_ref_t), allocatable :: grav(:)
       integer :: ngrav = 0
+      type(pair_ref_t), allocatable :: pair_refs(:)
+      type(source_loc_t) :: controls_loc      !< the *CONTACT CONTROLS line, file 0 if none yet
       integer :: nkeyword = 0
    end type deck_parser_t
 

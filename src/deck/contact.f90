@@ -1,0 +1,533 @@
+!> Handlers of the contact keywords: *SURFACE, *SURFACE INTERACTION, *SURFACE BEHAVIOR,
+!> *CONTACT PAIR and *CONTACT CONTROLS, and their resolution after the deck is read.
+!> Surfaces are resolved when read (their elements, sets and nodes must be defined
+!> before them, as for sets); contact pairs name surfaces and interactions that are
+!> looked up at the end, so that a misspelt name gets a suggestion among all of them.
+!> All contact definitions hold in every step and go before the first *STEP, as in
+!> CalculiX.
+module vemcontact_deck_contact
+   use vemcontact_kinds, only: wp, ip
+   use vemcontact_model, only: model_t, surface_t, interaction_t, contact_pair_t, source_loc_t, &
+                               surface_element, surface_node
+   use vemcontact_deck_state, only: deck_parser_t, item_list_t, pair_ref_t, here, err_here, err_at, &
+                                    field, get_real, push_item, loc_str
+   use vemcontact_deck_loads, only: field_nodes, field_elems
+   use vemcontact_deck_lines, only: advance, skip_data
+   use vemcontact_deck_source, only: line_data
+   use vemcontact_deck_fields, only: keyword_line_t, parse_keyword_line, split_fields, get_param, &
+                                     has_param, to_upper, squeeze, int_str, edit_distance
+   use vemcontact_deck_numbers, only: parse_int, parse_real, num_ok
+   use vemcontact_deck_idmap, only: sort_unique
+   implicit none
+   private
+
+   public :: read_surface, read_interaction, read_behavior, drop_behavior, read_contact_pair, read_controls
+   public :: finish_contact
+
+   character(len=*), parameter :: side_help = 'sides are S1, S2, ...: side Sk runs from node k to node k+1 '// &
+                                              'of the element (S1 = nodes 1-2, the last side back to node 1)'
+   character(len=*), parameter :: linear_only = 'vemcontact uses p = K * overclosure with no tension at '// &
+                                                'positive clearance'
+
+contains
+
+   !> Contact definitions hold in every step: they must come before the first *STEP.
+   subroutine before_steps(p, kname)
+      type(deck_parser_t), intent(inout) :: p
+      character(len=*), intent(in) :: kname
+      if (p%nstep > 0) then
+         call err_here(p, kname//' must come before the first *STEP', &
+                       'contact definitions hold in every step (CalculiX also requires them before all steps)')
+      end if
+   end subroutine before_steps
+
+   !> *SURFACE, NAME=name [, TYPE=ELEMENT|NODE].  TYPE=ELEMENT (default) data lines:
+   !> element or element set, S<k>; TYPE=NODE data lines: one node or node set per line.
+   subroutine read_surface(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      type(keyword_line_t) :: raw
+      character(len=:), allocatable :: name, tname, lab
+      logical :: found, ok
+      integer :: kind, k, nerr0, side, stat
+      integer(ip) :: iside, e, nn, n
+      type(source_loc_t) :: kwloc
+      type(item_list_t) :: items, elems, sides
+      type(item_list_t) :: members   !< nodes, or the element of each side
+      call before_steps(p, '*SURFACE')
+      kwloc = here(p)
+      call get_param(kw, 'NAME', name, found)
+      call get_param(kw, 'TYPE', tname, found)
+      if (.not. found) then
+         ! a TYPE with a bad value was reported and removed by check_keyword: reading
+         ! the data lines as element sides would only add noise
+         call parse_keyword_line(p%src%text(1:p%src%length), raw)
+         if (has_param(raw, 'TYPE')) then
+            call skip_data(p)
+            ! kept under its name (kind 0, no members) so that pairs naming it are not reported too
+            call grow_surfaces(model, p%nsurf)
+            p%nsurf = p%nsurf + 1
+            model%surfaces(p%nsurf)%name = name
+            model%surfaces(p%nsurf)%loc = kwloc
+            allocate (model%surfaces(p%nsurf)%elem(0), model%surfaces(p%nsurf)%side(0))
+            return
+         end if
+         tname = 'ELEMENT'
+      end if
+      kind = surface_element
+      if (tname == 'NODE') kind = surface_node
+      k = find_surface(model, p%nsurf, name)
+      if (k > 0) then
+         call err_here(p, 'surface '//name//' already defined at '//loc_str(p, model%surfaces(k)%loc), &
+                       'list all sides (or nodes) of a surface under one *SURFACE, or use another name')
+         call skip_data(p)
+         return
+      end if
+      nerr0 = p%diag%count
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         call split_fields(p%src%text(1:p%src%length), p%f)
+         if (kind == surface_node) then
+            if (p%f%n > 1) then
+               call err_here(p, 'a TYPE=NODE *SURFACE data line holds one node or node set', &
+                             'write one entry per line, as CalculiX reads it (Abaqus'' second field, '// &
+                             'an area or thickness, is not used by vemcontact)')
+               cycle
+            end if
+            call field_nodes(p, model, 1, items, ok)
+            if (.not. ok) cycle
+            do k = 1, int(items%n)
+               call push_item(members, items%a(k))
+            end do
+         else
+            if (p%f%n > 2) then
+               call err_here(p, 'too many fields on a TYPE=ELEMENT *SURFACE data line: expected '// &
+                             'element or element set, side label')
+               cycle
+            end if
+            call field_elems(p, model, 1, elems, ok)
+            if (.not. ok) cycle
+            lab = to_upper(squeeze(field(p, 2)))
+            if (len(lab) == 0) then
+               call err_here(p, 'missing side label on a *SURFACE data line', side_help)
+               cycle
+            end if
+            stat = -1
+            iside = 0
+            if (len(lab) >= 2) then
+               if (lab(1:1) == 'S') call parse_int(lab(2:), iside, stat)
+            end if
+            if (stat /= num_ok .or. iside < 1) then
+               call err_here(p, 'invalid side label '//lab, side_help)
+               cycle
+            end if
+            side = iside
+            ok = .true.
+            do k = 1, int(elems%n)
+               e = elems%a(k)
+               nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
+               if (side > nn) then
+                  call err_here(p, 'element '//int_str(model%elem_id(e))//' has '//int_str(nn)// &
+                                ' sides, so there is no side '//lab, side_help)
+                  ok = .false.
+                  exit
+               end if
+            end do
+            if (.not. ok) cycle
+            do k = 1, int(elems%n)
+               call push_item(members, elems%a(k))
+               call push_item(sides, iside)
+            end do
+         end if
+      end do
+      n = members%n
+      if (n == 0 .and. p%diag%count == nerr0) then
+         call err_at(p, kwloc, 'surface '//name//' is empty', &
+                     'give element sides ("element or set, S<k>") or, with TYPE=NODE, nodes after *SURFACE')
+      end if
+      ! stored even after errors, so that pairs naming it are not reported again
+      call grow_surfaces(model, p%nsurf)
+      p%nsurf = p%nsurf + 1
+      associate (s => model%surfaces(p%nsurf))
+         s%name = name
+         s%kind = kind
+         s%loc = kwloc
+         if (kind == surface_node) then
+            if (n > 1) call sort_unique(members%a, n)
+            allocate (s%nodes(n))
+            if (n > 0) s%nodes = members%a(1:n)
+         else
+            allocate (s%elem(n), s%side(n))
+            if (n > 0) then
+               s%elem = members%a(1:n)
+               s%side = int(sides%a(1:n))
+            end if
+         end if
+      end associate
+   end subroutine read_surface
+
+   subroutine grow_surfaces(model, n)
+      type(model_t), intent(inout) :: model
+      integer, intent(in) :: n
+      type(surface_t), allocatable :: t(:)
+      integer :: k
+      if (.not. allocated(model%surfaces)) allocate (model%surfaces(4))
+      if (n < size(model%surfaces)) return
+      allocate (t(2*n))
+      do k = 1, n
+         call move_alloc(model%surfaces(k)%name, t(k)%name)
+         t(k)%kind = model%surfaces(k)%kind
+         call move_alloc(model%surfaces(k)%elem, t(k)%elem)
+         call move_alloc(model%surfaces(k)%side, t(k)%side)
+         call move_alloc(model%surfaces(k)%nodes, t(k)%nodes)
+         t(k)%loc = model%surfaces(k)%loc
+      end do
+      call move_alloc(t, model%surfaces)
+   end subroutine grow_surfaces
+
+   !> Index of surface `name` among model%surfaces(1:n), 0 if absent.
+   pure function find_surface(model, n, name) result(k)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: n
+      character(len=*), intent(in) :: name
+      integer :: k
+      do k = 1, n
+         if (model%surfaces(k)%name == name) return
+      end do
+      k = 0
+   end function find_surface
+
+   !> Index of surface interaction `name` among model%interactions(1:n), 0 if absent.
+   pure function find_interaction(model, n, name) result(k)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: n
+      character(len=*), intent(in) :: name
+      integer :: k
+      do k = 1, n
+         if (model%interactions(k)%name == name) return
+      end do
+      k = 0
+   end function find_interaction
+
+   !> *SURFACE INTERACTION, NAME=name (no data lines): starts an interaction; the
+   !> *SURFACE BEHAVIOR that follows belongs to it.
+   subroutine read_interaction(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      type(interaction_t), allocatable :: t(:)
+      character(len=:), allocatable :: name
+      logical :: found
+      integer :: k
+      call before_steps(p, '*SURFACE INTERACTION')
+      call get_param(kw, 'NAME', name, found)
+      k = find_interaction(model, p%ninter, name)
+      if (k > 0) then
+         call err_here(p, 'surface interaction '//name//' already defined at '// &
+                       loc_str(p, model%interactions(k)%loc))
+         p%cur_inter = -1   ! its *SURFACE BEHAVIOR is dropped silently
+         return
+      end if
+      if (.not. allocated(model%interactions)) allocate (model%interactions(4))
+      if (p%ninter == size(model%interactions)) then
+         allocate (t(2*p%ninter))
+         t(1:p%ninter) = model%interactions(1:p%ninter)
+         call move_alloc(t, model%interactions)
+      end if
+      p%ninter = p%ninter + 1
+      model%interactions(p%ninter)%name = name
+      model%interactions(p%ninter)%loc = here(p)
+      p%cur_inter = p%ninter
+   end subroutine read_interaction
+
+   !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR; data line: K [, sigma_inf, c0].
+   !> vemcontact's law is p = K * overclosure, zero at positive clearance: CalculiX's
+   !> tension at large clearances (sigma_inf) and its spring-generation clearance (c0)
+   !> have no counterpart, so only 0 or blank is accepted for them.
+   subroutine read_behavior(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      character(len=:), allocatable :: po
+      logical :: found, ok, ok_k, ok_s, ok_c, first, dup
+      real(wp) :: k, sinf, c0
+      call before_steps(p, '*SURFACE BEHAVIOR')
+      if (p%cur_inter == 0) then
+         call err_here(p, '*SURFACE BEHAVIOR must follow a *SURFACE INTERACTION', &
+                       'start the interaction with *SURFACE INTERACTION, NAME=...')
+      end if
+      dup = .false.
+      if (p%cur_inter > 0) then
+         dup = model%interactions(p%cur_inter)%has_behavior
+         if (dup) call err_here(p, 'surface interaction '//model%interactions(p%cur_inter)%name// &
+                                ' already has *SURFACE BEHAVIOR')
+      end if
+      call get_param(kw, 'PRESSURE-OVERCLOSURE', po, found)
+      select case (po)
+      case ('LINEAR')
+         continue
+      case ('EXPONENTIAL', 'TABULAR', 'HARD', 'TIED')
+         call err_here(p, 'PRESSURE-OVERCLOSURE='//po//' is not supported', &
+                       'vemcontact supports PRESSURE-OVERCLOSURE=LINEAR (penalty: p = K * overclosure)')
+         call drop_behavior(p, model)
+         call skip_data(p)
+         return
+      case default
+         call err_here(p, 'invalid value '//po//' for parameter PRESSURE-OVERCLOSURE of *SURFACE BEHAVIOR', &
+                       'allowed values: LINEAR')
+         call drop_behavior(p, model)
+         call skip_data(p)
+         return
+      end select
+      call advance(p)
+      if (p%src%kind /= line_data) then
+         call err_here(p, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR needs a data line: K, the '// &
+                       'contact pressure per unit overclosure')
+         call drop_behavior(p, model)
+         return
+      end if
+      call split_fields(p%src%text(1:p%src%length), p%f)
+      ok = .true.
+      if (p%f%n > 3) then
+         call err_here(p, 'too many fields on the *SURFACE BEHAVIOR data line: expected K [, sigma_inf, c0]')
+         ok = .false.
+      end if
+      if (ok) then
+         ! each value is checked on its own so that all problems are reported
+         call get_real(p, 1, 'penalty slope K', k, ok_k, required=.true.)
+         call get_real(p, 2, 'sigma_inf', sinf, ok_s)
+         call get_real(p, 3, 'c0', c0, ok_c)
+         if (ok_k .and. .not. k > 0.0_wp) then
+            call err_here(p, 'penalty slope K = '//field(p, 1)//' must be positive', &
+                          'K is the contact pressure per unit overclosure, e.g. 10 to 100 times E over '// &
+                          'the element size')
+            ok_k = .false.
+         end if
+         if (ok_s .and. abs(sinf) > 0.0_wp) then
+            call err_here(p, linear_only//'; remove sigma_inf ('//field(p, 2)//')', &
+                          'CalculiX''s sigma_inf is the tension at large clearances of its node-to-face '// &
+                          'penalty contact; leave the field blank or 0')
+            ok_s = .false.
+         end if
+         if (ok_c .and. abs(c0) > 0.0_wp) then
+            call err_here(p, linear_only//'; remove c0 ('//field(p, 3)//')', &
+                          'CalculiX''s c0 sets the clearance up to which its contact springs act; '// &
+                          'leave the field blank or 0')
+            ok_c = .false.
+         end if
+         ok = ok_k .and. ok_s .and. ok_c
+      end if
+      if (p%cur_inter > 0 .and. .not. dup) then
+         ! after an error the interaction counts as having a behavior: it is not reported again as missing
+         if (ok) model%interactions(p%cur_inter)%penalty = k
+         model%interactions(p%cur_inter)%has_behavior = .true.
+      end if
+      first = .true.
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         if (first) call err_here(p, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR takes one data line')
+         first = .false.
+      end do
+   end subroutine read_behavior
+
+   !> After a *SURFACE BEHAVIOR that was reported as wrong, count the current interaction as
+   !> having one, so that a pair using it does not report it again as missing.
+   subroutine drop_behavior(p, model)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      if (p%cur_inter > 0) model%interactions(p%cur_inter)%has_behavior = .true.
+   end subroutine drop_behavior
+
+   !> *CONTACT PAIR, INTERACTION=name, TYPE=NODE TO SURFACE [, SMALL SLIDING]; data lines:
+   !> slave surface, master surface (one pair per line).
+   subroutine read_contact_pair(p, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(keyword_line_t), intent(in) :: kw
+      character(len=:), allocatable :: inter, ctype, shown
+      logical :: found
+      integer :: nline
+      type(pair_ref_t), allocatable :: t(:)
+      type(source_loc_t) :: kwloc
+      call before_steps(p, '*CONTACT PAIR')
+      kwloc = here(p)
+      call get_param(kw, 'INTERACTION', inter, found)
+      call get_param(kw, 'TYPE', ctype, found)
+      if (ctype /= 'NODETOSURFACE') then
+         shown = ctype
+         if (ctype == 'SURFACETOSURFACE') shown = 'SURFACE TO SURFACE'
+         call err_here(p, 'TYPE='//shown//' is not supported: vemcontact has node-to-segment contact '// &
+                       '(TYPE=NODE TO SURFACE)', 'write *CONTACT PAIR, INTERACTION='//inter// &
+                       ', TYPE=NODE TO SURFACE')
+         call skip_data(p)
+         return
+      end if
+      if (has_param(kw, 'ADJUST')) then
+         call err_here(p, 'ADJUST is not supported: vemcontact does not move slave nodes onto the master '// &
+                       'surface', 'remove ADJUST; the gap or overclosure of the mesh is used as it is')
+      end if
+      ! SMALL SLIDING is accepted: the pairing is that of a small-displacement model anyway
+      nline = 0
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         nline = nline + 1
+         call split_fields(p%src%text(1:p%src%length), p%f)
+         if (p%f%n /= 2 .or. len(field(p, 1)) == 0 .or. len(field(p, 2)) == 0) then
+            call err_here(p, 'a *CONTACT PAIR data line needs two surface names: slave, master')
+            cycle
+         end if
+         if (.not. allocated(p%pair_refs)) allocate (p%pair_refs(4))
+         if (p%npair == size(p%pair_refs)) then
+            allocate (t(2*p%npair))
+            t(1:p%npair) = p%pair_refs(1:p%npair)
+            call move_alloc(t, p%pair_refs)
+         end if
+         p%npair = p%npair + 1
+         associate (r => p%pair_refs(p%npair))
+            r%slave = to_upper(squeeze(field(p, 1)))
+            r%master = to_upper(squeeze(field(p, 2)))
+            r%interaction = inter
+            r%loc = here(p)
+         end associate
+      end do
+      if (nline == 0) then
+         call err_at(p, kwloc, '*CONTACT PAIR needs a data line: slave surface, master surface')
+      end if
+   end subroutine read_contact_pair
+
+   !> *CONTACT CONTROLS [, MAXIT=n] [, TOLERANCE=r] (vemcontact): active-set iterations per
+   !> step and the relative residual tolerance.  No data lines.
+   subroutine read_controls(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      character(len=:), allocatable :: val
+      logical :: found
+      integer :: stat
+      integer(ip) :: maxit
+      real(wp) :: tol
+      call before_steps(p, '*CONTACT CONTROLS')
+      if (p%controls_loc%file > 0) then
+         call err_here(p, 'second *CONTACT CONTROLS (the first is at '//loc_str(p, p%controls_loc)//')', &
+                       'give MAXIT and TOLERANCE on one *CONTACT CONTROLS line')
+         return
+      end if
+      p%controls_loc = here(p)
+      call get_param(kw, 'MAXIT', val, found)
+      if (found) then
+         ! the registry has checked it is a positive integer
+         call parse_int(squeeze(val), maxit, stat)
+         if (stat == num_ok) model%controls%max_iterations = maxit
+      end if
+      call get_param(kw, 'TOLERANCE', val, found)
+      if (found) then
+         call parse_real(squeeze(val), tol, stat)
+         if (stat == num_ok) then
+            if (tol > 0.0_wp .and. tol < 1.0_wp) then
+               model%controls%residual_tol = tol
+            else
+               call err_here(p, 'TOLERANCE = '//val//' must satisfy 0 < TOLERANCE < 1', &
+                             'it is the residual norm relative to the norm of the external and reaction '// &
+                             'forces, e.g. TOLERANCE=1e-8')
+            end if
+         end if
+      end if
+   end subroutine read_controls
+
+   !> Exact-size contact arrays and the pairs resolved: surfaces and interactions by
+   !> name, a TYPE=ELEMENT master, an interaction with its *SURFACE BEHAVIOR.
+   subroutine finish_contact(p, model)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(surface_t), allocatable :: ts(:)
+      logical, allocatable :: reported(:)
+      integer :: k, islave, imaster, iinter
+      if (allocated(model%surfaces)) then
+         allocate (ts(p%nsurf))
+         do k = 1, p%nsurf
+            call move_alloc(model%surfaces(k)%name, ts(k)%name)
+            ts(k)%kind = model%surfaces(k)%kind
+            call move_alloc(model%surfaces(k)%elem, ts(k)%elem)
+            call move_alloc(model%surfaces(k)%side, ts(k)%side)
+            call move_alloc(model%surfaces(k)%nodes, ts(k)%nodes)
+            ts(k)%loc = model%surfaces(k)%loc
+         end do
+         call move_alloc(ts, model%surfaces)
+      else
+         allocate (model%surfaces(0))
+      end if
+      if (allocated(model%interactions)) then
+         model%interactions = model%interactions(1:p%ninter)
+      else
+         allocate (model%interactions(0))
+      end if
+      allocate (model%pairs(p%npair), reported(p%ninter))
+      reported = .false.
+      do k = 1, p%npair
+         associate (r => p%pair_refs(k))
+            islave = find_surface(model, p%nsurf, r%slave)
+            imaster = find_surface(model, p%nsurf, r%master)
+            iinter = find_interaction(model, p%ninter, r%interaction)
+            if (islave == 0) then
+               call err_at(p, r%loc, 'undefined slave surface '//r%slave, surface_suggestion(r%slave))
+            end if
+            if (imaster == 0) then
+               call err_at(p, r%loc, 'undefined master surface '//r%master, surface_suggestion(r%master))
+            else if (model%surfaces(imaster)%kind == surface_node) then
+               call err_at(p, r%loc, 'master surface '//r%master//' is a TYPE=NODE surface', &
+                           'the master must be a TYPE=ELEMENT surface (element sides); only the slave '// &
+                           'may be TYPE=NODE')
+            else if (imaster == islave) then
+               call err_at(p, r%loc, 'slave and master are the same surface '//r%master, &
+                           'node-to-segment contact needs two different surfaces')
+            end if
+            if (iinter == 0) then
+               call err_at(p, r%loc, 'undefined surface interaction '//r%interaction, &
+                           interaction_suggestion(r%interaction))
+            else if (.not. model%interactions(iinter)%has_behavior .and. .not. reported(iinter)) then
+               reported(iinter) = .true.
+               call err_at(p, model%interactions(iinter)%loc, 'surface interaction '//r%interaction// &
+                           ' has no *SURFACE BEHAVIOR (it is used by the contact pair at '// &
+                           loc_str(p, r%loc)//')', 'add *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR '// &
+                           'and a data line with the slope K right after *SURFACE INTERACTION')
+            end if
+            model%pairs(k) = contact_pair_t(slave=islave, master=imaster, interaction=iinter, loc=r%loc)
+         end associate
+      end do
+   contains
+      function surface_suggestion(name) result(help)
+         character(len=*), intent(in) :: name
+         character(len=:), allocatable :: help
+         integer :: j, d, best
+         help = ''
+         best = huge(1)
+         do j = 1, p%nsurf
+            d = edit_distance(name, model%surfaces(j)%name)
+            if (d < best .and. d <= max(1, len(name)/3)) then
+               best = d
+               help = 'did you mean '//model%surfaces(j)%name//'?'
+            end if
+         end do
+         if (len(help) == 0 .and. p%nsurf == 0) help = 'define it with *SURFACE, NAME='//name
+      end function surface_suggestion
+
+      function interaction_suggestion(name) result(help)
+         character(len=*), intent(in) :: name
+         character(len=:), allocatable :: help
+         integer :: j, d, best
+         help = ''
+         best = huge(1)
+         do j = 1, p%ninter
+            d = edit_distance(name, model%interactions(j)%name)
+            if (d < best .and. d <= max(1, len(name)/3)) then
+               best = d
+               help = 'did you mean '//model%interactions(j)%name//'?'
+            end if
+         end do
+         if (len(help) == 0 .and. p%ninter == 0) help = 'define it with *SURFACE INTERACTION, NAME='//name
+      end function interaction_suggestion
+   end subroutine finish_contact
+end module vemcontact_deck_contact
