@@ -11,7 +11,8 @@ module vemcontact_log
    public :: logger_t, wall_time
 
    type :: logger_t
-      integer :: unit = -1
+      integer :: unit = -1          !< newunit numbers are negative: test `opened`, not the sign
+      logical :: opened = .false.
       logical :: quiet = .false.
    contains
       procedure :: open => logger_open
@@ -28,6 +29,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       integer :: stat
       open (newunit=self%unit, file=path, status='replace', action='write', iostat=stat)
+      self%opened = stat == 0
       if (stat /= 0) then
          self%unit = -1
          call fatal_error(error, 'error: cannot write the log file '//path, err_io)
@@ -38,7 +40,7 @@ contains
       class(logger_t), intent(in) :: self
       character(len=*), intent(in) :: line
       if (.not. self%quiet) write (output_unit, '(a)') line
-      if (self%unit >= 0) then
+      if (self%opened) then
          write (self%unit, '(a)') line
          flush (self%unit)
       end if
@@ -56,7 +58,8 @@ contains
 
    subroutine logger_close(self)
       class(logger_t), intent(inout) :: self
-      if (self%unit >= 0) close (self%unit)
+      if (self%opened) close (self%unit)
+      self%opened = .false.
       self%unit = -1
    end subroutine logger_close
 end module vemcontact_log

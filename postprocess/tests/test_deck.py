@@ -73,9 +73,15 @@ def test_paper_scenes_write_consistent_decks(tmp_path):
                 for eid, side in b[1]:
                     k = int(side[1:])
                     assert 1 <= k <= len(elems[int(eid)])
-            if b[0].startswith("*NSET") or "TYPE=NODE" in b[0]:
+            if b[0].startswith("*NSET"):
                 for r in b[1]:
                     assert {int(x) for x in r} <= nodes
+            if "TYPE=NODE" in b[0]:
+                # one node or one node set per line, as CalculiX (and vemcontact) read it
+                nsets = {bb[0].split("NSET=")[1].strip() for bb in blocks if bb[0].startswith("*NSET")}
+                for r in b[1]:
+                    assert len(r) == 1
+                    assert r[0] in nsets or int(r[0]) in nodes
         if "fem" in f.name or "quad" in f.name or "tri" in f.name:
             types = re.findall(r"TYPE=(\w+), ELSET", text)
             assert set(types) <= ({"CPE4", "CPE3"} if "fem" in f.name else {"VPE"})

@@ -60,7 +60,7 @@ contains
    subroutine fail(err)
       type(error_t), intent(in) :: err
       write (error_unit, '(a)') err%message
-      if (log%unit >= 0) then
+      if (log%opened) then
          write (log%unit, '(a)') err%message
          call log%close()
       end if

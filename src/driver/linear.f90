@@ -17,8 +17,12 @@ module vemcontact_driver_linear
    use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes
    use vemcontact_driver_load_state, only: load_state_t
    use vemcontact_driver_assembly, only: assemble_stiffness, assemble_loads
-   use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_rhs
+   use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_rhs, constrain_matrix
    use vemcontact_clock, only: wall_time
+   use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_search, only: merge_node_pairs
+   use vemcontact_sparse_matvec, only: sym_matvec
+   use vemcontact_log, only: logger_t
    implicit none
    private
 
@@ -41,31 +45,63 @@ module vemcontact_driver_linear
       ! phase timings of the last call, seconds
       real(wp) :: t_pattern = 0, t_assemble = 0, t_analyze = 0, t_factorize = 0, t_solve = 0
       logical :: refactorized = .false.           !< whether the last solve_state factorized
+      integer :: ordering = 0
+      integer :: iterations = 0                   !< contact iterations of the last solve_state
+      integer :: pattern_builds = 0
    contains
       procedure :: setup
       procedure :: solve_state
+      procedure, private :: build_system
+      procedure, private :: solve_contact
    end type linear_system_t
 
 contains
 
-   subroutine setup(self, model, ordering, error)
+   !> Validate, find the parts, build the pattern (covering the contact candidates
+   !> of `contact` at the undeformed state), assemble and analyze.
+   subroutine setup(self, model, ordering, error, contact)
       class(linear_system_t), intent(inout) :: self
       type(model_t), intent(in) :: model
       integer, intent(in) :: ordering
       type(error_t), allocatable, intent(out) :: error
-      integer(i8), allocatable :: adj_ptr(:)
-      integer(ip), allocatable :: adj(:), perm(:)
-      real(wp) :: t0
-
+      type(contact_state_t), intent(in), optional :: contact
+      real(wp), allocatable :: u0(:)
       call validate_elements(model, error)
       if (allocated(error)) return
       self%unused = unused_nodes(model)
       call find_parts(model, self%part, self%nparts)
+      self%ordering = ordering
+      allocate (u0(2*model%nnode), source=0.0_wp)
+      call self%build_system(model, error, contact, u0)
+   end subroutine setup
+
+   !> Pattern (element graph plus contact candidate pairs at displacements u),
+   !> stiffness and symbolic analysis.
+   subroutine build_system(self, model, error, contact, u)
+      class(linear_system_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: error
+      type(contact_state_t), intent(in), optional :: contact
+      real(wp), intent(in) :: u(:)
+      integer(i8), allocatable :: adj_ptr(:), ptr2(:)
+      integer(ip), allocatable :: adj(:), adj2(:), perm(:), extra(:, :)
+      real(wp) :: t0
 
       t0 = wall_time()
       call node_graph_from_elements(model%nnode, model%elem_ptr, model%elem_conn, adj_ptr, adj, error)
       if (allocated(error)) return
+      if (present(contact)) then
+         if (contact%n > 0) then
+            call contact%graph_pairs(model, u, extra, error)
+            if (allocated(error)) return
+            call merge_node_pairs(model%nnode, adj_ptr, adj, extra, ptr2, adj2, error)
+            if (allocated(error)) return
+            call move_alloc(ptr2, adj_ptr)
+            call move_alloc(adj2, adj)
+         end if
+      end if
       call build_pattern(model%nnode, adj_ptr, adj, self%k)
+      self%pattern_builds = self%pattern_builds + 1
       self%t_pattern = wall_time() - t0
 
       t0 = wall_time()
@@ -74,7 +110,9 @@ contains
       self%t_assemble = wall_time() - t0
 
       t0 = wall_time()
-      if (ordering == ordering_metis .or. (ordering == ordering_auto .and. model%nnode >= metis_threshold)) then
+      call self%solver%release()
+      if (self%ordering == ordering_metis .or. &
+          (self%ordering == ordering_auto .and. model%nnode >= metis_threshold)) then
          allocate (perm(2*model%nnode))
          call nodal_metis_ordering(model%nnode, adj_ptr, adj, perm, error)
          if (allocated(error)) return
@@ -85,18 +123,29 @@ contains
       if (allocated(error)) return
       self%t_analyze = wall_time() - t0
       self%factored = .false.
-   end subroutine setup
+   end subroutine build_system
 
    !> Solve for the displacements u(2*nnode) of a load state.
-   subroutine solve_state(self, model, st, u, error)
+   !> With `contact`, the active-set iteration of solve_contact; `u` then holds
+   !> the previous state on entry (the pairing starts from it) and the new one on exit.
+   subroutine solve_state(self, model, st, u, error, contact, log)
       class(linear_system_t), intent(inout) :: self
       type(model_t), intent(in) :: model
       type(load_state_t), intent(in) :: st
-      real(wp), intent(out) :: u(:)
+      real(wp), intent(inout) :: u(:)
       type(error_t), allocatable, intent(out) :: error
+      type(contact_state_t), intent(inout), optional :: contact
+      type(logger_t), intent(in), optional :: log
       logical, allocatable :: fixed(:)
       real(wp), allocatable :: f(:)
       real(wp) :: t0
+      self%iterations = 0
+      if (present(contact)) then
+         if (contact%n > 0) then
+            call self%solve_contact(model, st, u, contact, error, log)
+            return
+         end if
+      end if
       fixed = st%fixed
       ! nodes of no element carry nothing: hold them so the matrix stays regular
       fixed(1::2) = fixed(1::2) .or. self%unused
@@ -136,4 +185,117 @@ contains
          return
       end if
    end subroutine solve_state
+
+   !> Active-set iterations of the penalty contact problem for one load state.
+   subroutine solve_contact(self, model, st, u, contact, error, log)
+      class(linear_system_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(load_state_t), intent(in) :: st
+      real(wp), intent(inout) :: u(:)
+      type(contact_state_t), intent(inout) :: contact
+      type(error_t), allocatable, intent(out) :: error
+      type(logger_t), intent(in), optional :: log
+      logical, allocatable :: fixed(:), history(:, :)
+      real(wp), allocatable :: fext(:), f(:), ku(:), fc(:), r(:)
+      real(wp) :: t0, rel, scale, kmax
+      integer :: it, nchanged, maxit, j
+      logical :: ok
+      character(len=160) :: buf
+
+      fixed = st%fixed
+      fixed(1::2) = fixed(1::2) .or. self%unused
+      fixed(2::2) = fixed(2::2) .or. self%unused
+      allocate (fext(size(u)), f(size(u)), ku(size(u)), fc(size(u)), r(size(u)))
+      call assemble_loads(model, st%force, st%dload, fext)
+      maxit = model%controls%max_iterations
+      kmax = 0.0_wp
+      do j = 1, self%k%n
+         kmax = max(kmax, abs(self%k%val(self%k%col_ptr(j + 1) - 1)))
+      end do
+      allocate (history(contact%n, 0:maxit))
+      ! start from the state left by the previous step (or the undeformed one)
+      call contact%project(model, u, error)
+      if (allocated(error)) return
+      call contact%update_active(nchanged)
+      history(:, 0) = contact%active
+      self%t_factorize = 0
+      self%t_solve = 0
+      if (present(log)) call log%say('  iter  active  changed     residual  max penetration  max pressure')
+      do it = 1, maxit
+         self%iterations = it
+         self%kb = self%k
+         call contact%add_stiffness(self%kb, ok)
+         if (.not. ok) then
+            ! the pairing left the candidate pairs of the pattern: new pattern and analysis
+            call self%build_system(model, error, contact, u)
+            if (allocated(error)) return
+            if (present(log)) call log%say('        (contact pairs moved: matrix pattern rebuilt)')
+            self%kb = self%k
+            call contact%add_stiffness(self%kb, ok)
+            if (.not. ok) then
+               call fatal_error(error, 'internal error: contact spring outside the rebuilt pattern', err_solver)
+               return
+            end if
+         end if
+         f = fext
+         call contact%add_rhs(f)
+         call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part))
+         if (allocated(error)) return
+         call constrain_rhs(self%kb, fixed, st%prescribed, f)
+         call constrain_matrix(self%kb, fixed)
+         t0 = wall_time()
+         call self%solver%factorize(self%kb, error)
+         if (allocated(error)) return
+         self%t_factorize = self%t_factorize + (wall_time() - t0)
+         t0 = wall_time()
+         call self%solver%solve(f, u, error)
+         if (allocated(error)) return
+         self%t_solve = self%t_solve + (wall_time() - t0)
+         if (.not. all(abs(u) <= huge(1.0_wp))) then
+            call fatal_error(error, 'error: the solution has NaN or infinite values: the model is '// &
+                             'numerically singular', err_solver)
+            return
+         end if
+         self%factored = .true.
+         self%refactorized = .true.
+         self%factored_fixed = fixed
+
+         ! new pairing and active set; residual of the equilibrium with them
+         call contact%project(model, u, error)
+         if (allocated(error)) return
+         call contact%update_active(nchanged)
+         call sym_matvec(self%k, u, ku)
+         fc = 0.0_wp
+         call contact%forces(fc)
+         r = fext - ku - fc
+         where (fixed) r = 0.0_wp
+         ! normwise backward error |r| / (|K| |u| + |f|), with |K| estimated by its
+         ! largest diagonal entry plus the stiffest closed spring: meaningful also
+         ! when the problem is driven by prescribed displacements and carries no load
+         scale = (kmax + maxval(contact%k, mask=contact%active, dim=1)*merge(1.0_wp, 0.0_wp, any(contact%active))) &
+                 *norm2(u) + norm2(merge(0.0_wp, fext, fixed)) + norm2(fc)
+         rel = 0.0_wp
+         if (scale > 0.0_wp) rel = norm2(r)/scale
+         write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4)') it, count(contact%active), nchanged, &
+            rel, contact%max_penetration(), contact%max_pressure()
+         if (present(log)) call log%say(trim(buf))
+         history(:, it) = contact%active
+         if (nchanged == 0 .and. rel <= model%controls%residual_tol) return
+         ! the same active set as two or more iterations ago, and not the last one: a cycle
+         if (nchanged > 0) then
+            do j = 0, it - 1
+               if (all(history(:, j) .eqv. contact%active)) then
+                  write (buf, '(a,i0,a,i0,a)') 'error: contact iterations cycle: iteration ', it, &
+                     ' returns to the active set of iteration ', j, &
+                     ' (the penalty may be too large for the mesh, or a slave node sits at a master edge end)'
+                  call fatal_error(error, trim(buf), err_solver)
+                  return
+               end if
+            end do
+         end if
+      end do
+      write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations did not converge in ', maxit, &
+         ' iterations (relative residual ', rel, '); raise MAXIT on *CONTACT CONTROLS or check the penalty'
+      call fatal_error(error, trim(buf), err_solver)
+   end subroutine solve_contact
 end module vemcontact_driver_linear

@@ -13,6 +13,8 @@ module vemcontact_driver_static
    use vemcontact_output_vtu, only: write_vtu
    use vemcontact_output_pvd, only: write_pvd
    use vemcontact_output_hdf5, only: h5_writer_t
+   use vemcontact_output_contact, only: contact_table_t, write_contact_csv, write_contact_vtu
+   use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    implicit none
@@ -36,6 +38,10 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(linear_system_t) :: sys
       type(load_state_t) :: st
+      type(contact_state_t) :: contact
+      type(contact_table_t) :: tab
+      integer, allocatable :: parts(:)
+      integer :: ip_
       type(h5_writer_t) :: h5
       real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:)
       type(string_t), allocatable :: vtu_files(:)
@@ -52,7 +58,18 @@ contains
          count(model%elem_type == etype_polygon)
       call log%say(trim(buf))
 
-      call sys%setup(model, opts%ordering, error)
+      call contact%init(model, error)
+      if (allocated(error)) return
+      if (contact%n > 0) then
+         write (buf, '(2x,a,i0,a,i0,a)') 'contact: ', size(contact%pairs), ' pairs, ', contact%n, ' slave nodes'
+         call log%say(trim(buf))
+         if (contact%nexcluded > 0) then
+            write (buf, '(2x,a,i0,a)') 'note: ', contact%nexcluded, &
+               ' slave nodes are also master nodes (joint tips, bonded nodes) and are left out of contact'
+            call log%say(trim(buf))
+         end if
+      end if
+      call sys%setup(model, opts%ordering, error, contact)
       if (allocated(error)) return
       if (any(sys%unused)) then
          write (buf, '(2x,a,i0,a)') 'note: ', count(sys%unused), ' nodes belong to no element and are left out'
@@ -74,13 +91,18 @@ contains
       allocate (u(2*model%nnode), s_elem(4, model%nelem), s_node(4, model%nnode))
       ! displacements are reported relative to the end of a geostatic step
       allocate (u_ref(2*model%nnode), source=0.0_wp)
-      allocate (vtu_files(0), times(0))
+      allocate (vtu_files(0), times(0), parts(0))
+      u = 0.0_wp
       do istep = 1, size(model%steps)
          name = step_name(istep)
          call log%say('step '//name)
          call advance_load_state(model%steps(istep), st)
-         call sys%solve_state(model, st, u, error)
+         call sys%solve_state(model, st, u, error, contact, log)
          if (allocated(error)) return
+         if (sys%iterations > 0) then
+            write (buf, '(2x,a,i0,a)') 'contact converged in ', sys%iterations, ' iterations'
+            call log%say(trim(buf))
+         end if
          if (sys%refactorized) call log%phase('factorize', sys%t_factorize)
          call log%phase('solve', sys%t_solve)
          if (opts%write_matrix .and. istep == 1) then
@@ -105,10 +127,35 @@ contains
          if (allocated(error)) return
          vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
          times = [times, real(istep, wp)]
-         call write_pvd(base//'.pvd', vtu_files, times, error)
-         if (allocated(error)) return
+         parts = [parts, 0]
          call h5%write_step(istep, name, real(istep, wp), reshape(u_out, [2, int(model%nnode)]), &
                             s_elem, s_node, error)
+         if (allocated(error)) return
+         if (contact%n > 0) then
+            ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per pair
+            tab = contact%table(model)
+            write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
+            call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, error)
+            if (allocated(error)) return
+            vtu_files = [vtu_files, string_t(opts%out_dir//'/'//opts%job//trim(buf))]
+            times = [times, real(istep, wp)]
+            parts = [parts, 1]
+            do ip_ = 1, size(model%pairs)
+               write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
+               call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error)
+               if (allocated(error)) return
+               call h5%write_contact(istep, ip_, pack(tab%node_id, tab%pair == ip_), &
+                                     reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
+                                     pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
+                                     pack(tab%status, tab%pair == ip_), error)
+               if (allocated(error)) return
+            end do
+            write (buf, '(2x,a,i0,a,i0,a,es12.4,a,es12.4)') 'contact: ', count(contact%active), ' of ', contact%n, &
+               ' slave nodes closed, max pressure ', contact%max_pressure(), ', max penetration ', &
+               contact%max_penetration()
+            call log%say(trim(buf))
+         end if
+         call write_pvd(base//'.pvd', vtu_files, times, error, parts)
          if (allocated(error)) return
          call log%phase('write', wall_time() - t0)
          write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(u_out(1::2))), &

@@ -73,9 +73,15 @@ def write_deck(m, path_or_file, header_lines=(), node_set_all="NALL"):
         for line in _id_lines(np.asarray(cells) + 1):
             out.write(line + "\n")
     for name, nodes in m.nsurfaces.items():
+        # a TYPE=NODE data line holds one node or one node set (as CalculiX reads
+        # it): name the node set of the same nodes when there is one
         out.write(f"*SURFACE, NAME={name}, TYPE=NODE\n")
-        for line in _id_lines(np.asarray(nodes) + 1):
-            out.write(line + "\n")
+        same = name in m.nsets and np.array_equal(np.sort(np.asarray(m.nsets[name])), np.sort(np.asarray(nodes)))
+        if same:
+            out.write(f"{name}\n")
+        else:
+            for v in np.asarray(nodes) + 1:
+                out.write(f"{int(v)}\n")
     for name, (cells, sides) in m.esurfaces.items():
         out.write(f"*SURFACE, NAME={name}, TYPE=ELEMENT\n")
         for c, s in zip(cells, sides):

@@ -1,0 +1,335 @@
+!> The contact state of all pairs of a model: slave nodes with their springs,
+!> master segments with their search grids, the current pairing (segment, xi,
+!> normal, gap) and the active set.  The driver's iteration asks it for the
+!> candidate node pairs of the matrix pattern, the contact stiffness of the
+!> active springs, their right-hand side, the contact forces of a displacement
+!> field, the springs that hold bodies, and the table written as results.
+!>
+!> Kinematics (small strain, docs/contact-formulation.md): the pairing (segment,
+!> xi, n) is found in the current configuration x + u; with it frozen the gap is
+!> linear in u, g = g0 + n.A(xi) u with g0 = n.(X_s - X_xi) from the reference
+!> coordinates, so an iteration with a fixed active set and pairing is one linear
+!> solve.  A slave node is active when g <= 0 (H(-g) of the paper, so surfaces
+!> that touch initially, as the Hertz disc, start closed).
+module vemcontact_contact_active_set
+   use vemcontact_kinds, only: wp, ip
+   use vemcontact_error, only: error_t, fatal_error, append_message, err_input
+   use vemcontact_model, only: model_t, location_string
+   use vemcontact_contact_surfaces, only: master_segments, slave_nodes
+   use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
+                                        contact_graph_pairs
+   use vemcontact_contact_geometry, only: relative_map, contact_stiffness
+   use vemcontact_sparse_matrix, only: sym_csc_t
+   use vemcontact_sparse_pattern, only: add_element_matrix
+   use vemcontact_driver_supports, only: spring_t
+   use vemcontact_output_contact, only: contact_table_t
+   implicit none
+   private
+
+   public :: contact_state_t
+
+   !> One contact pair's geometry.
+   type :: pair_data_t
+      integer(ip), allocatable :: seg(:, :)   !< (2, nseg) master segments, element orientation
+      integer :: first = 0                    !< its slave nodes are entries first+1 .. first+nslave
+      integer :: nslave = 0
+      real(wp) :: radius = 0.0_wp             !< search radius: twice the longest master segment
+      real(wp) :: slope = 0.0_wp              !< penalty slope K of the interaction
+   end type pair_data_t
+
+   type :: contact_state_t
+      type(pair_data_t), allocatable :: pairs(:)
+      integer :: n = 0                         !< slave entries over all pairs
+      integer(ip), allocatable :: node(:)      !< slave node of each entry
+      integer, allocatable :: pair(:)          !< its pair
+      real(wp), allocatable :: length(:)       !< undeformed tributary length
+      real(wp), allocatable :: thick(:)
+      real(wp), allocatable :: k(:)            !< spring stiffness K * length * thick
+      integer(ip), allocatable :: iseg(:)      !< chosen segment (index into its pair's seg), 0 if none
+      real(wp), allocatable :: xi(:), gap(:), gap0(:), normal(:, :)
+      logical, allocatable :: active(:)
+      integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
+   contains
+      procedure :: init
+      procedure :: graph_pairs
+      procedure :: project
+      procedure :: update_active
+      procedure :: add_stiffness
+      procedure :: add_rhs
+      procedure :: forces
+      procedure :: springs
+      procedure :: table
+      procedure :: max_penetration
+      procedure :: max_pressure
+   end type contact_state_t
+
+contains
+
+   !> Gather the pairs' slave nodes and master segments; nothing is active yet.
+   subroutine init(self, model, error)
+      class(contact_state_t), intent(out) :: self
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      integer(ip), allocatable :: seg(:, :), seg_elem(:), node(:)
+      integer, allocatable :: seg_side(:)
+      real(wp), allocatable :: length(:), thick(:)
+      integer(ip) :: nex
+      integer :: p, nseg, i
+      integer(ip), allocatable :: all_node(:)
+      integer, allocatable :: all_pair(:)
+      real(wp), allocatable :: all_len(:), all_thick(:)
+      if (.not. allocated(model%pairs)) then
+         allocate (self%pairs(0))
+         call allocate_entries(self, 0)
+         return
+      end if
+      allocate (self%pairs(size(model%pairs)))
+      allocate (all_node(0), all_pair(0), all_len(0), all_thick(0))
+      do p = 1, size(model%pairs)
+         call master_segments(model, model%pairs(p), seg, seg_elem, seg_side, err)
+         if (allocated(err)) then
+            call append_message(error, location_string(model, model%pairs(p)%loc)//': '//err%message, err%code)
+            cycle
+         end if
+         call slave_nodes(model, model%pairs(p), node, length, thick, nex, err)
+         if (allocated(err)) then
+            call append_message(error, location_string(model, model%pairs(p)%loc)//': '//err%message, err%code)
+            cycle
+         end if
+         nseg = size(seg, 2)
+         self%pairs(p)%seg = seg
+         self%pairs(p)%radius = 0.0_wp
+         do i = 1, nseg
+            self%pairs(p)%radius = max(self%pairs(p)%radius, &
+                                       2.0_wp*norm2(model%x(:, seg(2, i)) - model%x(:, seg(1, i))))
+         end do
+         self%pairs(p)%slope = model%interactions(model%pairs(p)%interaction)%penalty
+         self%pairs(p)%first = size(all_node)
+         self%pairs(p)%nslave = size(node)
+         self%nexcluded = self%nexcluded + nex
+         all_node = [all_node, node]
+         all_pair = [all_pair, spread(p, 1, size(node))]
+         all_len = [all_len, length]
+         all_thick = [all_thick, thick]
+      end do
+      if (allocated(error)) return
+      call allocate_entries(self, size(all_node))
+      self%node = all_node
+      self%pair = all_pair
+      self%length = all_len
+      self%thick = all_thick
+      do i = 1, self%n
+         self%k(i) = self%pairs(self%pair(i))%slope*self%length(i)*self%thick(i)
+      end do
+      if (self%n == 0 .and. size(model%pairs) > 0) then
+         call fatal_error(error, location_string(model, model%pairs(1)%loc)// &
+                          ': error: the contact pairs have no slave nodes', err_input)
+      end if
+   end subroutine init
+
+   subroutine allocate_entries(self, n)
+      type(contact_state_t), intent(inout) :: self
+      integer, intent(in) :: n
+      self%n = n
+      allocate (self%node(n), self%pair(n), self%length(n), self%thick(n), self%k(n))
+      allocate (self%iseg(n), source=0_ip)
+      allocate (self%xi(n), self%gap(n), self%gap0(n), source=0.0_wp)
+      allocate (self%normal(2, n), source=0.0_wp)
+      allocate (self%active(n), source=.false.)
+   end subroutine allocate_entries
+
+   !> Node pairs (slave, master node) that contact can couple with displacements
+   !> u (current configuration x + u): the extra edges of the matrix pattern.
+   subroutine graph_pairs(self, model, u, pairs, error)
+      class(contact_state_t), intent(in) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer(ip), allocatable, intent(out) :: pairs(:, :)
+      type(error_t), allocatable, intent(out) :: error
+      type(segment_grid_t) :: grid
+      integer(ip), allocatable :: pp(:, :)
+      real(wp), allocatable :: xc(:, :)
+      integer :: p
+      xc = model%x + reshape(u, shape(model%x))
+      allocate (pairs(2, 0))
+      do p = 1, size(self%pairs)
+         if (self%pairs(p)%nslave == 0) cycle
+         ! twice the radius: room for the pairing to move within a step without a new pattern
+         call build_segment_grid(xc, self%pairs(p)%seg, 2.0_wp*self%pairs(p)%radius, grid, error)
+         if (allocated(error)) return
+         associate (pd => self%pairs(p))
+            call contact_graph_pairs(grid, xc, pd%seg, self%node(pd%first + 1:pd%first + pd%nslave), &
+                                     2.0_wp*pd%radius, pp)
+         end associate
+         pairs = reshape([pairs, pp], [2, size(pairs, 2) + size(pp, 2)])
+      end do
+   end subroutine graph_pairs
+
+   !> Pair every slave node in the current configuration x + u.
+   subroutine project(self, model, u, error)
+      class(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(segment_grid_t) :: grid
+      real(wp), allocatable :: xc(:, :)
+      integer(ip), allocatable :: prev(:)
+      integer :: p, i, lo, hi
+      integer(ip) :: a, b
+      xc = model%x + reshape(u, shape(model%x))
+      do p = 1, size(self%pairs)
+         associate (pd => self%pairs(p))
+            if (pd%nslave == 0) cycle
+            lo = pd%first + 1
+            hi = pd%first + pd%nslave
+            call build_segment_grid(xc, pd%seg, pd%radius, grid, error)
+            if (allocated(error)) return
+            prev = self%iseg(lo:hi)
+            call closest_segments(grid, xc, pd%seg, self%node(lo:hi), pd%radius, self%iseg(lo:hi), &
+                                  self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
+            do i = lo, hi
+               if (self%iseg(i) == 0) cycle
+               a = pd%seg(1, self%iseg(i))
+               b = pd%seg(2, self%iseg(i))
+               ! reference gap with this pairing frozen: g = g0 + n.A u.  The gap is
+               ! evaluated in this form (from displacement differences) rather than from
+               ! the current coordinates: an overclosure of 1e-10 of the coordinates
+               ! would otherwise lose most of its digits to cancellation
+               self%gap0(i) = dot_product(self%normal(:, i), model%x(:, self%node(i)) - &
+                                          ((1.0_wp - self%xi(i))*model%x(:, a) + self%xi(i)*model%x(:, b)))
+               self%gap(i) = self%gap0(i) + dot_product(self%normal(:, i), u(2*self%node(i) - 1:2*self%node(i)) - &
+                             ((1.0_wp - self%xi(i))*u(2*a - 1:2*a) + self%xi(i)*u(2*b - 1:2*b)))
+            end do
+         end associate
+      end do
+   end subroutine project
+
+   !> New active set from the current gaps; returns how many entries changed.
+   subroutine update_active(self, nchanged)
+      class(contact_state_t), intent(inout) :: self
+      integer, intent(out) :: nchanged
+      logical, allocatable :: new(:)
+      new = self%iseg > 0 .and. self%gap <= 0.0_wp
+      nchanged = count(new .neqv. self%active)
+      self%active = new
+   end subroutine update_active
+
+   !> Add k A^T n n^T A of the active springs to `a`; `ok` false when a spring
+   !> couples nodes the pattern does not hold (the caller rebuilds the pattern).
+   subroutine add_stiffness(self, a, ok)
+      class(contact_state_t), intent(in) :: self
+      type(sym_csc_t), intent(inout) :: a
+      logical, intent(out) :: ok
+      integer :: i
+      ok = .true.
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         ! closed springs carry their stiffness even at g = 0 exactly (initial touching)
+         call add_element_matrix(a, nodes_of(self, i), &
+                                 contact_stiffness(self%xi(i), self%normal(:, i), self%k(i), -1.0_wp), ok)
+         if (.not. ok) return
+      end do
+   end subroutine add_stiffness
+
+   !> Right-hand side of the active springs: -k g0 A^T n.
+   subroutine add_rhs(self, f)
+      class(contact_state_t), intent(in) :: self
+      real(wp), intent(inout) :: f(:)
+      integer :: i
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         call scatter(f, nodes_of(self, i), -self%k(i)*self%gap0(i)* &
+                      matmul(self%normal(:, i), relative_map(self%xi(i))))
+      end do
+   end subroutine add_rhs
+
+   !> Contact forces k g A^T n of the active springs at the current pairing and gaps.
+   subroutine forces(self, f)
+      class(contact_state_t), intent(in) :: self
+      real(wp), intent(inout) :: f(:)
+      integer :: i
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         call scatter(f, nodes_of(self, i), self%k(i)*min(self%gap(i), 0.0_wp)* &
+                      matmul(self%normal(:, i), relative_map(self%xi(i))))
+      end do
+   end subroutine forces
+
+   !> Closed springs as supports between parts, for the floating-part check.
+   function springs(self, model, part) result(s)
+      class(contact_state_t), intent(in) :: self
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: part(:)
+      type(spring_t), allocatable :: s(:)
+      integer :: i, m
+      integer(ip) :: nodes(3)
+      allocate (s(count(self%active)))
+      m = 0
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         m = m + 1
+         nodes = nodes_of(self, i)
+         s(m) = spring_t(model%x(:, nodes(1)), self%normal(:, i), part(nodes(1)), part(nodes(2)))
+      end do
+   end function springs
+
+   !> Results of every slave node: COPEN = gap, CPRESS = K * overclosure.
+   function table(self, model) result(tab)
+      class(contact_state_t), intent(in) :: self
+      type(model_t), intent(in) :: model
+      type(contact_table_t) :: tab
+      integer :: i
+      tab%node = self%node
+      tab%node_id = model%node_id(self%node)
+      tab%x = model%x(:, self%node)
+      tab%pair = self%pair
+      allocate (tab%copen(self%n), tab%cpress(self%n), tab%status(self%n))
+      do i = 1, self%n
+         tab%status(i) = merge(1, 0, self%active(i))
+         if (self%iseg(i) == 0) then
+            ! no master segment within the search radius: the gap is at least the radius
+            tab%copen(i) = self%pairs(self%pair(i))%radius
+            tab%cpress(i) = 0.0_wp
+         else
+            tab%copen(i) = self%gap(i)
+            tab%cpress(i) = merge(self%pairs(self%pair(i))%slope*max(-self%gap(i), 0.0_wp), 0.0_wp, self%active(i))
+         end if
+      end do
+   end function table
+
+   !> Largest overclosure of the active springs (0 if none).
+   pure real(wp) function max_penetration(self) result(m)
+      class(contact_state_t), intent(in) :: self
+      m = maxval(-self%gap, mask=self%active)
+      if (.not. any(self%active)) m = 0.0_wp
+      m = max(m, 0.0_wp)
+   end function max_penetration
+
+   !> Largest contact pressure K * overclosure of the active springs.
+   pure real(wp) function max_pressure(self) result(m)
+      class(contact_state_t), intent(in) :: self
+      integer :: i
+      m = 0.0_wp
+      do i = 1, self%n
+         if (self%active(i)) m = max(m, self%pairs(self%pair(i))%slope*max(-self%gap(i), 0.0_wp))
+      end do
+   end function max_pressure
+
+   pure function nodes_of(self, i) result(nodes)
+      type(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      integer(ip) :: nodes(3)
+      nodes = [self%node(i), self%pairs(self%pair(i))%seg(:, self%iseg(i))]
+   end function nodes_of
+
+   pure subroutine scatter(f, nodes, fe)
+      real(wp), intent(inout) :: f(:)
+      integer(ip), intent(in) :: nodes(3)
+      real(wp), intent(in) :: fe(6)
+      integer :: j
+      do j = 1, 3
+         f(2*nodes(j) - 1:2*nodes(j)) = f(2*nodes(j) - 1:2*nodes(j)) + fe(2*j - 1:2*j)
+      end do
+   end subroutine scatter
+end module vemcontact_contact_active_set

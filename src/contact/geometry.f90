@@ -1,0 +1,129 @@
+!> Node-to-segment contact kinematics and the penalty element of one contact
+!> point (docs/contact-formulation.md has the derivation).
+!>
+!> A slave node s at x_s and a master segment a -> b, oriented as the side of its
+!> counter-clockwise element, so that n = (t_y, -t_x)/l (t = x_b - x_a, l = |t|)
+!> is the master body's outward normal.  The projection parameter is normalized,
+!> xi = (x_s - x_a).t / l**2 (0 at a, 1 at b), the normal gap is
+!> g = n.(x_s - x_xi) (> 0 open, < 0 penetration), and the relative displacement
+!> u_s - u_xi = A(xi) [u_s; u_a; u_b] with A = [I, -(1-xi) I, -xi I].
+!> The penalty energy 1/2 k <-g>**2 gives the force f = k g A^T n (g < 0) and,
+!> with n and xi frozen, the stiffness k A^T n n^T A (the paper's Eq. 3.13).
+module vemcontact_contact_geometry
+   use vemcontact_kinds, only: wp
+   implicit none
+   private
+
+   public :: project_point_segment, relative_map, contact_force, contact_stiffness
+   public :: contact_energy, contact_pressure, segment_is_degenerate
+
+   !> project_point_segment status: a proper segment
+   integer, parameter, public :: seg_ok = 0
+   !> project_point_segment status: zero length within round-off, no normal exists
+   integer, parameter, public :: seg_degenerate = 1
+
+   ! A segment is degenerate when its length is below a few ulps of its end
+   ! coordinates: then t = x_b - x_a is pure round-off and carries no direction.
+   real(wp), parameter :: degenerate_rel = 16.0_wp*epsilon(1.0_wp)
+
+contains
+
+   !> True when a -> b has no usable direction: l <= 16 eps max(|x_a|, |x_b|)
+   !> (max norm), or l = 0 for end points at the origin.
+   pure logical function segment_is_degenerate(xa, xb) result(deg)
+      real(wp), intent(in) :: xa(2), xb(2)
+      real(wp) :: scale, l
+      scale = max(maxval(abs(xa)), maxval(abs(xb)))
+      l = norm2(xb - xa)
+      deg = l <= degenerate_rel*scale .or. .not. (l > 0.0_wp)
+   end function segment_is_degenerate
+
+   !> Closest-point projection of `xs` on the segment xa -> xb.
+   !> xi: normalized parameter of the projection on the segment's line (not clamped);
+   !> gap: n.(xs - x_xi), the signed distance to the line (> 0 on the outward side);
+   !> normal: outward unit normal (t_y, -t_x)/l; dist: distance from xs to the
+   !> closest point of the segment itself (xi clamped to [0, 1]).
+   !> A degenerate segment returns status = seg_degenerate, xi = 0, normal = 0,
+   !> dist = |xs - xa| and gap = dist (open, so that a caller ignoring the
+   !> status does not create a contact force).
+   pure subroutine project_point_segment(xs, xa, xb, xi, gap, normal, dist, status)
+      real(wp), intent(in) :: xs(2), xa(2), xb(2)
+      real(wp), intent(out) :: xi, gap, normal(2), dist
+      integer, intent(out) :: status
+      real(wp) :: t(2), l, d(2), xc
+      if (segment_is_degenerate(xa, xb)) then
+         status = seg_degenerate
+         xi = 0.0_wp
+         normal = 0.0_wp
+         dist = norm2(xs - xa)
+         gap = dist
+         return
+      end if
+      status = seg_ok
+      t = xb - xa
+      l = norm2(t)
+      d = xs - xa
+      xi = dot_product(d, t)/(l*l)
+      normal = [t(2), -t(1)]/l
+      ! n.t = 0, so n.(xs - x_xi) = n.(xs - xa) for any xi: no cancellation from xi
+      gap = dot_product(normal, d)
+      xc = min(max(xi, 0.0_wp), 1.0_wp)
+      dist = norm2(d - xc*t)
+   end subroutine project_point_segment
+
+   !> A(xi) = [I2, -(1-xi) I2, -xi I2]: u_s - u_xi = A [u_s; u_a; u_b] (dof order
+   !> s_x, s_y, a_x, a_y, b_x, b_y).
+   pure function relative_map(xi) result(a)
+      real(wp), intent(in) :: xi
+      real(wp) :: a(2, 6)
+      a = 0.0_wp
+      a(1, 1) = 1.0_wp
+      a(2, 2) = 1.0_wp
+      a(1, 3) = -(1.0_wp - xi)
+      a(2, 4) = -(1.0_wp - xi)
+      a(1, 5) = -xi
+      a(2, 6) = -xi
+   end function relative_map
+
+   !> Contact force on the dofs (s, a, b): k g A(xi)^T n when g < 0, else zero.
+   !> It enters the equilibrium as K u + f_c = f_ext (gradient of 1/2 k <-g>**2).
+   pure function contact_force(xi, normal, k, gap) result(f)
+      real(wp), intent(in) :: xi, normal(2), k, gap
+      real(wp) :: f(6)
+      if (gap < 0.0_wp) then
+         f = k*gap*matmul(normal, relative_map(xi))
+      else
+         f = 0.0_wp
+      end if
+   end function contact_force
+
+   !> Contact stiffness k A^T n n^T A when g < 0 (else zero): the derivative of
+   !> contact_force with n and xi frozen.  Symmetric, rank one.
+   pure function contact_stiffness(xi, normal, k, gap) result(kc)
+      real(wp), intent(in) :: xi, normal(2), k, gap
+      real(wp) :: kc(6, 6)
+      real(wp) :: v(6)
+      integer :: j
+      if (gap < 0.0_wp) then
+         v = matmul(normal, relative_map(xi))
+         do j = 1, 6
+            kc(:, j) = k*(v*v(j))
+         end do
+      else
+         kc = 0.0_wp
+      end if
+   end function contact_stiffness
+
+   !> Penalty energy 1/2 k <-g>**2 of one contact point.
+   pure real(wp) function contact_energy(k, gap) result(e)
+      real(wp), intent(in) :: k, gap
+      e = 0.5_wp*k*min(gap, 0.0_wp)**2
+   end function contact_energy
+
+   !> Contact pressure (CPRESS) K <-g> for the interaction slope K: the force
+   !> k_s (-g) spread over the slave's tributary area L_s * thickness.
+   pure real(wp) function contact_pressure(penalty, gap) result(p)
+      real(wp), intent(in) :: penalty, gap
+      p = penalty*max(-gap, 0.0_wp)
+   end function contact_pressure
+end module vemcontact_contact_geometry

@@ -1,0 +1,181 @@
+!> Node-to-segment kinematics and the penalty element: projection and gap on
+!> known geometry, A(xi) on rigid motions, stiffness against finite differences
+!> of the force, force as the gradient of the penalty energy.
+program test_contact_geometry
+   use vemcontact_kinds, only: wp
+   use vemcontact_testing, only: checker_t
+   use vemcontact_contact_geometry, only: project_point_segment, relative_map, contact_force, &
+                                          contact_stiffness, contact_energy, contact_pressure, &
+                                          seg_ok, seg_degenerate
+   implicit none
+   type(checker_t) :: t
+   real(wp) :: xa(2), xb(2), tt(2), nn(2), xs(2), xi, g, n(2), d, l
+   real(wp) :: a(2, 6), u(6), x6(6), kc(6, 6), kfd(6, 6), f(6), fp(6), fm(6), du(6), dx
+   real(wp) :: k, de, diff, ratio, gtarget, c(2), w
+   integer :: st, j, m
+   character(len=32) :: lab
+
+   ! ---- projection on a 3-4-5 segment: t = (3, 4), l = 5, n = (4, -3)/5
+   xa = [1.0_wp, 1.0_wp]
+   xb = [4.0_wp, 5.0_wp]
+   tt = (xb - xa)/5.0_wp
+   nn = [4.0_wp, -3.0_wp]/5.0_wp
+   ! exact decimal data: results agree to a few ulps of the coordinates
+   call project_point_segment(xa + 0.3_wp*5.0_wp*tt + 2.0_wp*nn, xa, xb, xi, g, n, d, st)
+   call t%equal(st, seg_ok, 'status of a proper segment')
+   call t%close(xi, 0.3_wp, 1.0e-14_wp, 'xi inside')
+   call t%close(g, 2.0_wp, 1.0e-14_wp, 'gap inside')
+   call t%close(d, 2.0_wp, 1.0e-14_wp, 'distance inside = |g|')
+   call t%close(n(1), 0.8_wp, 1.0e-15_wp, 'normal x')
+   call t%close(n(2), -0.6_wp, 1.0e-15_wp, 'normal y')
+   call project_point_segment(xa - 0.4_wp*5.0_wp*tt + 1.5_wp*nn, xa, xb, xi, g, n, d, st)
+   call t%close(xi, -0.4_wp, 1.0e-14_wp, 'xi < 0')
+   call t%close(g, 1.5_wp, 1.0e-14_wp, 'gap before a')
+   call t%close(d, 2.5_wp, 1.0e-14_wp, 'distance to a (clamped)')
+   call project_point_segment(xa + 1.6_wp*5.0_wp*tt - 0.5_wp*nn, xa, xb, xi, g, n, d, st)
+   call t%close(xi, 1.6_wp, 1.0e-14_wp, 'xi > 1')
+   call t%close(g, -0.5_wp, 1.0e-14_wp, 'gap after b')
+   call t%close(d, sqrt(9.0_wp + 0.25_wp), 1.0e-14_wp, 'distance to b (clamped)')
+
+   ! ---- gap sign: a -> b along +x is the bottom side of a ccw element (body above)
+   call project_point_segment([0.5_wp, 0.1_wp], [0.0_wp, 0.0_wp], [1.0_wp, 0.0_wp], xi, g, n, d, st)
+   call t%check(g < 0.0_wp, 'point above a bottom side (inside the body): g < 0')
+   call t%close(g, -0.1_wp, 1.0e-15_wp, 'its gap')
+   call project_point_segment([0.5_wp, -0.1_wp], [0.0_wp, 0.0_wp], [1.0_wp, 0.0_wp], xi, g, n, d, st)
+   call t%check(g > 0.0_wp, 'point below a bottom side: g > 0')
+   ! b -> a: a top side (body below)
+   call project_point_segment([0.5_wp, 0.1_wp], [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], xi, g, n, d, st)
+   call t%check(g > 0.0_wp, 'point above a top side: g > 0')
+   call t%close(xi, 0.5_wp, 1.0e-15_wp, 'xi on a reversed side')
+   call project_point_segment([0.5_wp, -0.1_wp], [1.0_wp, 0.0_wp], [0.0_wp, 0.0_wp], xi, g, n, d, st)
+   call t%check(g < 0.0_wp, 'point below a top side: g < 0')
+   ! vertical sides of the unit square: right side (1,0)->(1,1), left side (0,1)->(0,0)
+   call project_point_segment([1.2_wp, 0.5_wp], [1.0_wp, 0.0_wp], [1.0_wp, 1.0_wp], xi, g, n, d, st)
+   call t%check(g > 0.0_wp .and. n(1) > 0.99_wp, 'right side: outward normal +x, outside point open')
+   call project_point_segment([0.2_wp, 0.5_wp], [0.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], xi, g, n, d, st)
+   call t%check(g < 0.0_wp .and. n(1) < -0.99_wp, 'left side: outward normal -x, inside point penetrates')
+
+   ! ---- degenerate segment: a status, no division by zero
+   call project_point_segment([1.0_wp, 2.0_wp], [3.0_wp, 3.0_wp], [3.0_wp, 3.0_wp], xi, g, n, d, st)
+   call t%equal(st, seg_degenerate, 'zero-length segment flagged')
+   call t%check(g > 0.0_wp .and. maxval(abs(n)) <= 0.0_wp, 'degenerate: open gap, no normal')
+   call project_point_segment([1.0_wp, 2.0_wp], [1.0e8_wp, 0.0_wp], [1.0e8_wp, 1.0e-9_wp], xi, g, n, d, st)
+   call t%equal(st, seg_degenerate, 'segment below round-off of its coordinates flagged')
+
+   ! ---- A(xi): rigid translations give no relative displacement, for any xi
+   do j = -2, 6
+      xi = 0.25_wp*j
+      a = relative_map(xi)
+      u = [0.3_wp, -1.7_wp, 0.3_wp, -1.7_wp, 0.3_wp, -1.7_wp]
+      call t%close(maxval(abs(matmul(a, u))), 0.0_wp, 0.0_wp, 'A(xi) on a translation', atol=1.0e-15_wp)
+   end do
+   ! an infinitesimal rotation w x r about any point leaves n.(u_s - u_xi) = 0
+   ! when xi is the projection (u_s - u_xi = w x (g n) is tangential)
+   xs = [2.5_wp, 0.7_wp]
+   call project_point_segment(xs, xa, xb, xi, g, n, d, st)
+   c = [-3.0_wp, 2.0_wp]
+   x6 = [xs, xa, xb]
+   do j = 1, 3
+      u(2*j - 1) = -(x6(2*j) - c(2))
+      u(2*j) = x6(2*j - 1) - c(1)
+   end do
+   call t%close(dot_product(n, matmul(relative_map(xi), u)), 0.0_wp, 0.0_wp, &
+                'normal relative displacement of a rotation', atol=1.0e-14_wp*maxval(abs(u)))
+
+   ! ---- force and stiffness
+   k = 3.0e4_wp
+   xs = [2.0_wp, 3.9_wp]          ! inside the body side of a -> b (3-4-5 segment)
+   call project_point_segment(xs, xa, xb, xi, g, n, d, st)
+   call t%check(g < 0.0_wp, 'force state penetrates')
+   f = contact_force(xi, n, k, g)
+   call t%close(sum(f(1::2)), 0.0_wp, 0.0_wp, 'force balance x', atol=1.0e-12_wp*maxval(abs(f)))
+   call t%close(sum(f(2::2)), 0.0_wp, 0.0_wp, 'force balance y', atol=1.0e-12_wp*maxval(abs(f)))
+   call t%close(norm2(f(1:2)), k*abs(g), 1.0e-14_wp, 'slave force magnitude k|g|')
+   ! f_c sits with K u on the left of K u + f_c = f_ext, so the load it puts on the
+   ! slave is -f_s = k |g| n: outward, pushing the node out of the master body
+   call t%check(dot_product(-f(1:2), n) > 0.0_wp, 'contact reaction on the slave is outward')
+   call t%close(contact_pressure(2.0_wp, g), -2.0_wp*g, 1.0e-15_wp, 'CPRESS = K (-g)')
+   call t%close(contact_pressure(2.0_wp, 0.1_wp), 0.0_wp, 0.0_wp, 'no pressure when open')
+   call t%close(maxval(abs(contact_force(xi, n, k, 0.1_wp))), 0.0_wp, 0.0_wp, 'zero force for g > 0')
+   call t%close(maxval(abs(contact_stiffness(xi, n, k, 0.1_wp))), 0.0_wp, 0.0_wp, 'zero stiffness for g > 0')
+   call t%close(maxval(abs(contact_force(xi, n, k, 0.0_wp))), 0.0_wp, 0.0_wp, 'zero force at g = 0')
+
+   ! frozen n and xi: f(x) = k (n.A x) A^T n is linear, so central differences are
+   ! exact up to round-off eps*|f|/dx ~ 1e-16*1e5/1e-6: 1e-8 relative is ample
+   kc = contact_stiffness(xi, n, k, g)
+   call t%close(maxval(abs(kc - transpose(kc))), 0.0_wp, 0.0_wp, 'stiffness symmetric')
+   x6 = [xs, xa, xb]
+   dx = 1.0e-6_wp
+   do j = 1, 6
+      du = 0.0_wp
+      du(j) = dx
+      fp = frozen_force(x6 + du)
+      fm = frozen_force(x6 - du)
+      kfd(:, j) = (fp - fm)/(2.0_wp*dx)
+   end do
+   call t%close(maxval(abs(kfd - kc))/maxval(abs(kc)), 0.0_wp, 0.0_wp, &
+                'stiffness = FD of the force (n, xi frozen)', atol=1.0e-8_wp)
+   write (*, '(a,es10.3)') 'frozen FD stiffness relative error: ', maxval(abs(kfd - kc))/maxval(abs(kc))
+
+   ! projection recomputed: the true Jacobian adds k g d(A^T n)/dx, whose entries
+   ! are at most ~ k |g| / l (n and xi change by O(1/l) per unit motion): the
+   ! difference relative to max|K_c| must be O(|g|/l): asserted within [0.5, 2] |g|/l
+   ! (observed 1.00 |g|/l for this geometry at |g|/l = 1e-2, 1e-4, 1e-6)
+   l = 5.0_wp
+   do m = 1, 3
+      gtarget = -l*10.0_wp**(-2*m)
+      xs = xa + 0.37_wp*(xb - xa) + gtarget*nn
+      x6 = [xs, xa, xb]
+      call project_point_segment(xs, xa, xb, xi, g, n, d, st)
+      kc = contact_stiffness(xi, n, k, g)
+      dx = 1.0e-3_wp*abs(g)       ! stays on the penetrating side
+      do j = 1, 6
+         du = 0.0_wp
+         du(j) = dx
+         kfd(:, j) = (full_force(x6 + du) - full_force(x6 - du))/(2.0_wp*dx)
+      end do
+      diff = maxval(abs(kfd - kc))/maxval(abs(kc))
+      ratio = diff/(abs(g)/l)
+      write (lab, '(a,es8.1)') ' |g|/l=', abs(g)/l
+      write (*, '(a,es10.3,a,f8.4)') 'recomputed projection: rel. difference ', diff, &
+         '  / (|g|/l) = ', ratio
+      call t%check(ratio <= 2.0_wp, 'K_c vs FD with projection recomputed within 2|g|/l,'//trim(lab))
+      call t%check(ratio >= 0.5_wp, 'the neglected term is really O(|g|/l) (not zero),'//trim(lab))
+   end do
+
+   ! energy: f_c is the gradient of 1/2 k <-g>^2 with the projection recomputed
+   ! (dg = n.(du_s - du_xi) exactly); central difference error O(|du|^2/(|g| l)) + round-off
+   xs = xa + 0.61_wp*(xb - xa) - 0.05_wp*nn
+   x6 = [xs, xa, xb]
+   du = [0.3_wp, -0.2_wp, 0.1_wp, 0.5_wp, -0.4_wp, 0.2_wp]*1.0e-7_wp
+   call project_point_segment(xs, xa, xb, xi, g, n, d, st)
+   f = contact_force(xi, n, k, g)
+   de = energy(x6 + du) - energy(x6 - du)
+   call t%close(de, 2.0_wp*dot_product(f, du), 1.0e-8_wp, 'f_c . du = dE')
+   w = energy([xa + 0.5_wp*(xb - xa) + 0.1_wp*nn, xa, xb])
+   call t%close(w, 0.0_wp, 0.0_wp, 'no energy when open')
+   call t%finish()
+contains
+   function frozen_force(x) result(ff)
+      real(wp), intent(in) :: x(6)
+      real(wp) :: ff(6), gg
+      gg = dot_product(n, matmul(relative_map(xi), x))
+      ff = contact_force(xi, n, k, gg)
+   end function frozen_force
+
+   function full_force(x) result(ff)
+      real(wp), intent(in) :: x(6)
+      real(wp) :: ff(6), xi1, g1, n1(2), d1
+      integer :: s1
+      call project_point_segment(x(1:2), x(3:4), x(5:6), xi1, g1, n1, d1, s1)
+      ff = contact_force(xi1, n1, k, g1)
+   end function full_force
+
+   real(wp) function energy(x)
+      real(wp), intent(in) :: x(6)
+      real(wp) :: xi1, g1, n1(2), d1
+      integer :: s1
+      call project_point_segment(x(1:2), x(3:4), x(5:6), xi1, g1, n1, d1, s1)
+      energy = contact_energy(k, g1)
+   end function energy
+end program test_contact_geometry
