@@ -18,7 +18,7 @@ module vemcontact_contact_active_set
    use vemcontact_contact_surfaces, only: master_segments, slave_nodes
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
                                         contact_graph_pairs
-   use vemcontact_contact_geometry, only: relative_map, contact_stiffness
+   use vemcontact_contact_geometry, only: relative_map, contact_stiffness, project_point_segment, seg_ok
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_driver_supports, only: spring_t
@@ -27,6 +27,12 @@ module vemcontact_contact_active_set
    private
 
    public :: contact_state_t
+
+   !> A node keeps its segment while its projection stays within this fraction of
+   !> the segment's length beyond the segment's ends.  Without it a node above a
+   !> master vertex can flip between the two segments from one iteration to the
+   !> next when the master bends there (each solve makes the other one closer).
+   real(wp), parameter, public :: pairing_hysteresis = 0.05_wp
 
    !> One contact pair's geometry.
    type :: pair_data_t
@@ -189,6 +195,7 @@ contains
             call closest_segments(grid, xc, pd%seg, self%node(lo:hi), pd%radius, self%iseg(lo:hi), &
                                   self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
             do i = lo, hi
+               call keep_previous(i, prev(i - lo + 1))
                if (self%iseg(i) == 0) cycle
                a = pd%seg(1, self%iseg(i))
                b = pd%seg(2, self%iseg(i))
@@ -203,6 +210,23 @@ contains
             end do
          end associate
       end do
+   contains
+      subroutine keep_previous(i, iprev)
+         integer, intent(in) :: i
+         integer(ip), intent(in) :: iprev
+         real(wp) :: xi, gap, normal(2), dist
+         integer :: status
+         if (iprev == 0 .or. iprev == self%iseg(i)) return
+         associate (sg => self%pairs(self%pair(i))%seg(:, iprev))
+            call project_point_segment(xc(:, self%node(i)), xc(:, sg(1)), xc(:, sg(2)), xi, gap, normal, dist, status)
+         end associate
+         if (status /= seg_ok) return
+         if (xi < -pairing_hysteresis .or. xi > 1.0_wp + pairing_hysteresis) return
+         self%iseg(i) = iprev
+         self%xi(i) = xi
+         self%gap(i) = gap
+         self%normal(:, i) = normal
+      end subroutine keep_previous
    end subroutine project
 
    !> New active set from the current gaps; returns how many entries changed.

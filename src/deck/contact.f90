@@ -22,7 +22,7 @@ module vemcontact_deck_contact
    private
 
    public :: read_surface, read_interaction, read_behavior, drop_behavior, read_contact_pair, read_controls
-   public :: finish_contact
+   public :: finish_contact, find_surface
 
    character(len=*), parameter :: side_help = 'sides are S1, S2, ...: side Sk runs from node k to node k+1 '// &
                                               'of the element (S1 = nodes 1-2, the last side back to node 1)'

@@ -20,7 +20,7 @@ module vemcontact_deck_loads
    private
 
    public :: read_heading, read_boundary, read_cload, read_dload, start_step, read_procedure, end_step
-   public :: acc_to_step, field_nodes, field_elems
+   public :: acc_to_step, field_nodes, field_elems, get_op
 
 contains
 

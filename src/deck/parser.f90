@@ -13,12 +13,13 @@ module vemcontact_deck_parser
                                        kw_material, kw_elastic, kw_density, kw_solid_section, &
                                        kw_boundary, kw_cload, kw_dload, kw_step, kw_static, kw_end_step, &
                                        kw_surface, kw_surface_interaction, kw_surface_behavior, &
-                                       kw_contact_pair, kw_contact_controls, kw_geostatic
+                                       kw_contact_pair, kw_contact_controls, kw_geostatic, kw_dsload
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
    use vemcontact_deck_loads, only: read_heading, read_boundary, read_cload, read_dload, start_step, &
                                     read_procedure, end_step
+   use vemcontact_deck_surface_loads, only: read_dsload
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
                                       read_contact_pair, read_controls
    implicit none
@@ -107,6 +108,8 @@ contains
             call read_procedure(p, .false.)
          case (kw_geostatic)
             call read_procedure(p, .true.)
+         case (kw_dsload)
+            call read_dsload(p, model, kw)
          case (kw_surface)
             call read_surface(p, model, kw)
          case (kw_surface_interaction)

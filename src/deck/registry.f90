@@ -20,7 +20,7 @@ module vemcontact_deck_registry
                                  kw_cload = 12, kw_dload = 13, kw_step = 14, kw_static = 15, &
                                  kw_end_step = 16, kw_surface = 17, kw_surface_interaction = 18, &
                                  kw_surface_behavior = 19, kw_contact_pair = 20, kw_contact_controls = 21, &
-                                 kw_geostatic = 22
+                                 kw_geostatic = 22, kw_dsload = 23
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -52,7 +52,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(22) = [ &
+   type(keyword_spec_t), parameter :: keywords(23) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -74,9 +74,10 @@ module vemcontact_deck_registry
                                       keyword_spec_t('SURFACE BEHAVIOR', ctx_model, data_required), &
                                       keyword_spec_t('CONTACT PAIR', ctx_model, data_required), &
                                       keyword_spec_t('CONTACT CONTROLS', ctx_model, data_none), &
-                                      keyword_spec_t('GEOSTATIC', ctx_step, data_optional)]
+                                      keyword_spec_t('GEOSTATIC', ctx_step, data_optional), &
+                                      keyword_spec_t('DSLOAD', ctx_step, data_optional)]
 
-   type(param_spec_t), parameter :: params(30) = [ &
+   type(param_spec_t), parameter :: params(31) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -93,6 +94,7 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_boundary, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_cload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_dload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
+                                    param_spec_t(kw_dsload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_static, 'SOLVER', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_step, 'NLGEOM', par_optvalue, .false., val_name, 'NO YES'), &
                                     param_spec_t(kw_step, 'INC', par_value, .false., val_int, ''), &

@@ -285,17 +285,17 @@ contains
          if (nchanged > 0) then
             do j = 0, it - 1
                if (all(history(:, j) .eqv. contact%active)) then
-                  write (buf, '(a,i0,a,i0,a)') 'error: contact iterations cycle: iteration ', it, &
-                     ' returns to the active set of iteration ', j, &
-                     ' (the penalty may be too large for the mesh, or a slave node sits at a master edge end)'
-                  call fatal_error(error, trim(buf), err_solver)
+                  write (buf, '(a,i0,a,i0)') 'error: contact iterations cycle: iteration ', it, &
+                     ' returns to the active set of iteration ', j
+                  call fatal_error(error, trim(buf)//' (the penalty may be too large for the mesh, or a '// &
+                                   'slave node sits at the end of a master surface)', err_solver)
                   return
                end if
             end do
          end if
       end do
       write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations did not converge in ', maxit, &
-         ' iterations (relative residual ', rel, '); raise MAXIT on *CONTACT CONTROLS or check the penalty'
-      call fatal_error(error, trim(buf), err_solver)
+         ' iterations (relative residual ', rel, ')'
+      call fatal_error(error, trim(buf)//'; raise MAXIT on *CONTACT CONTROLS or check the penalty', err_solver)
    end subroutine solve_contact
 end module vemcontact_driver_linear
