@@ -211,3 +211,69 @@ def test_body_held_only_by_contact_without_contact(exe, tmp_path):
     # held in x at one node, nothing holds it in y: free to move along (0, 1)
     assert "part 2" in r.stderr and "translate freely along ( 0.000E+00, 1.000E+00)" in r.stderr
     assert "part 1" not in r.stderr
+
+
+# ---------------------------------------------------------------- a joint in one body
+CRACK_SCENE = """
+[mesh]
+title = "block with an edge joint"
+seed = 7
+lloyd = 20
+
+[[body]]
+name = "BLOCK"
+polygon = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]
+cells = 120
+
+[[joint]]
+name = "CRACK"
+polyline = [[0.0, 0.5], [1.0, 0.5]]
+master = "right"
+
+[[selection]]
+name = "BOTTOM"
+y = 0.0
+
+[[selection]]
+name = "TOP"
+y = 1.0
+"""
+
+
+def test_joint_opens_then_closes(exe, tmp_path):
+    """A block with a joint from its left edge to a tip at (1, 0.5) (the two faces
+    share the tip node): pulling the top up opens the joint (positive gaps, no
+    pressure), pushing it down closes it (all faces in contact, pressure of the
+    order of the compressive stress E eps).  The displacement field jumps across
+    the open joint."""
+    import subprocess as sp
+    import sys
+    scene = tmp_path / "crack.toml"
+    scene.write_text(CRACK_SCENE)
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "postprocess"))
+    sp.run([sys.executable, "-m", "vctools.mesh", "scene", str(scene), "-o", str(tmp_path / "crack_mesh.inp")],
+           check=True, env=env, capture_output=True)
+    (tmp_path / "crack.inp").write_text("\n".join([
+        "*INCLUDE, INPUT=crack_mesh.inp",
+        "*MATERIAL, NAME=M", "*ELASTIC", "1000., 0.25",
+        "*SOLID SECTION, ELSET=BLOCK, MATERIAL=M", "1.",
+        "*SURFACE INTERACTION, NAME=J", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", "1.e6",
+        "*CONTACT PAIR, INTERACTION=J, TYPE=NODE TO SURFACE", "CRACK_SLAVE, CRACK_MASTER",
+        "*BOUNDARY", "BOTTOM, 1, 2", "TOP, 1",
+        "*STEP, NAME=PULL", "*STATIC", "*BOUNDARY", "TOP, 2, 2, 0.01", "*END STEP",
+        "*STEP, NAME=PUSH", "*STATIC", "*BOUNDARY", "TOP, 2, 2, -0.01", "*END STEP"]) + "\n")
+    run(exe, tmp_path / "crack.inp", tmp_path)
+    d1 = read_csv(tmp_path / "crack_contact_pair1_0001.csv")
+    d2 = read_csv(tmp_path / "crack_contact_pair1_0002.csv")
+    assert len(d1) > 5
+    assert (d1["STATUS"] == "OPEN").all() and (d1["COPEN"] > 0).all() and (d1["CPRESS"] == 0).all()
+    assert (d2["STATUS"] == "CLOSED").all() and (d2["COPEN"] < 0).all()
+    # compressive stress of the order of E eps = 1000 * 0.01 (the joint is half the width)
+    assert 2.0 < np.median(d2["CPRESS"]) < 30.0
+    # the mouth (x = 0) opens by about the imposed 0.01 (the part above the joint
+    # rises with the top); the opening decreases toward the tip
+    o = np.argsort(d1["x"])
+    assert abs(d1["COPEN"][o][0] / 0.01 - 1) < 0.1
+    assert d1["COPEN"][o][-1] < d1["COPEN"][o][0]
+    # the tip node (1, 0.5) is shared by both faces: it is no slave node
+    assert np.min(np.hypot(d1["x"] - 1.0, d1["y"] - 0.5)) > 1e-9
