@@ -25,7 +25,10 @@ def main(argv=None) -> int:
     p.add_argument("--field", action="append", help="field to draw (repeatable; default U:x U:y S1 S3 MISES)")
     p.add_argument("--step", type=int, default=0, help="step of a .pvd, 1-based (default: last)")
     p.add_argument("--deformed", default=None, help="draw on the deformed shape: auto or a scale factor")
-    p.add_argument("--units", default="", help="units written on the colour bar")
+    p.add_argument("--units", default="", metavar="LENGTH[,STRESS]",
+                   help="units on the colour bar: displacement fields take the first, stresses the second (e.g. m,Pa)")
+    p.add_argument("--line", action="append", default=[], metavar="X1,Y1,X2,Y2[,...]",
+                   help="polyline drawn over the picture, e.g. a joint (repeatable; undeformed coordinates)")
     p.add_argument("-o", "--output", default=None, help="folder for the pictures (default: the result's)")
     p.add_argument("--format", choices=["png", "pdf"], default="png")
     a = p.parse_args(argv)
@@ -41,9 +44,20 @@ def main(argv=None) -> int:
         outdir = a.output or os.path.dirname(os.path.abspath(vtu))
         os.makedirs(outdir, exist_ok=True)
         job = os.path.splitext(os.path.basename(vtu))[0]
+        lines = []
+        for text in a.line:
+            try:
+                v = [float(t) for t in text.split(",")]
+            except ValueError:
+                raise ResultError(f"--line {text}: expected numbers x1,y1,x2,y2,...") from None
+            if len(v) < 4 or len(v) % 2:
+                raise ResultError(f"--line {text}: expected an even number (at least 4) of coordinates")
+            lines.append([v[i:i + 2] for i in range(0, len(v), 2)])
         for f in a.field or ["U:x", "U:y", "S1", "S3", "MISES"]:
             out = os.path.join(outdir, f"{job}_{f.replace(':', '_')}.{a.format}")
-            plot(res, f, out, deformed=deformed, units=a.units)
+            units = a.units.split(",")
+            unit = units[0] if f.removeprefix("cell:").startswith("U") or len(units) == 1 else units[1]
+            plot(res, f, out, deformed=deformed, units=unit, lines=lines)
             print(out)
     except ResultError as exc:
         print(f"vc-plot: error: {exc}", file=sys.stderr)

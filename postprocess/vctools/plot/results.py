@@ -38,7 +38,8 @@ def step_files(path: str) -> list[str]:
     except ET.ParseError as exc:
         raise ResultError(f"{path}: not a readable .pvd collection ({exc})") from None
     base = os.path.dirname(path)
-    files = [os.path.join(base, ds.get("file", "")) for ds in root.iter("DataSet")]
+    # part 0 is the mesh; other parts (1: the contact points) are not steps
+    files = [os.path.join(base, ds.get("file", "")) for ds in root.iter("DataSet") if ds.get("part", "0") == "0"]
     if not files:
         raise ResultError(f"{path}: the collection lists no steps")
     return files
