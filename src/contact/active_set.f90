@@ -161,12 +161,12 @@ contains
       allocate (pairs(2, 0))
       do p = 1, size(self%pairs)
          if (self%pairs(p)%nslave == 0) cycle
-         ! twice the radius: room for the pairing to move within a step without a new pattern
-         call build_segment_grid(xc, self%pairs(p)%seg, 2.0_wp*self%pairs(p)%radius, grid, error)
-         if (allocated(error)) return
+         ! twice the search radius: room for the pairing to move without a new pattern
          associate (pd => self%pairs(p))
+            call build_segment_grid(xc, pd%seg, 2.0_wp*search_radius(pd, u), grid, error)
+            if (allocated(error)) return
             call contact_graph_pairs(grid, xc, pd%seg, self%node(pd%first + 1:pd%first + pd%nslave), &
-                                     2.0_wp*pd%radius, pp)
+                                     2.0_wp*search_radius(pd, u), pp)
          end associate
          pairs = reshape([pairs, pp], [2, size(pairs, 2) + size(pp, 2)])
       end do
@@ -183,16 +183,18 @@ contains
       integer(ip), allocatable :: prev(:)
       integer :: p, i, lo, hi
       integer(ip) :: a, b
+      real(wp) :: radius
       xc = model%x + reshape(u, shape(model%x))
       do p = 1, size(self%pairs)
          associate (pd => self%pairs(p))
             if (pd%nslave == 0) cycle
             lo = pd%first + 1
             hi = pd%first + pd%nslave
-            call build_segment_grid(xc, pd%seg, pd%radius, grid, error)
+            radius = search_radius(pd, u)
+            call build_segment_grid(xc, pd%seg, radius, grid, error)
             if (allocated(error)) return
             prev = self%iseg(lo:hi)
-            call closest_segments(grid, xc, pd%seg, self%node(lo:hi), pd%radius, self%iseg(lo:hi), &
+            call closest_segments(grid, xc, pd%seg, self%node(lo:hi), radius, self%iseg(lo:hi), &
                                   self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
             do i = lo, hi
                call keep_previous(i, prev(i - lo + 1))
@@ -222,6 +224,7 @@ contains
          end associate
          if (status /= seg_ok) return
          if (xi < -pairing_hysteresis .or. xi > 1.0_wp + pairing_hysteresis) return
+         if (dist > radius) return          ! no longer a candidate: the pattern may not hold it
          self%iseg(i) = iprev
          self%xi(i) = xi
          self%gap(i) = gap
@@ -339,6 +342,22 @@ contains
          if (self%active(i)) m = max(m, self%pairs(self%pair(i))%slope*max(-self%gap(i), 0.0_wp))
       end do
    end function max_pressure
+
+   !> Search radius of a pair at displacements u: twice its longest master segment
+   !> plus twice the largest displacement, since a node that has penetrated cannot
+   !> lie deeper than the two bodies have moved toward each other (a body held by a
+   !> single closed spring in the first iteration can sink far).
+   pure real(wp) function search_radius(pd, u) result(r)
+      type(pair_data_t), intent(in) :: pd
+      real(wp), intent(in) :: u(:)
+      integer :: i
+      real(wp) :: umax
+      umax = 0.0_wp
+      do i = 1, size(u)/2
+         umax = max(umax, hypot(u(2*i - 1), u(2*i)))
+      end do
+      r = pd%radius + 2.0_wp*umax
+   end function search_radius
 
    pure function nodes_of(self, i) result(nodes)
       type(contact_state_t), intent(in) :: self

@@ -197,7 +197,7 @@ contains
       type(logger_t), intent(in), optional :: log
       logical, allocatable :: fixed(:), history(:, :)
       real(wp), allocatable :: fext(:), f(:), ku(:), fc(:), r(:)
-      real(wp) :: t0, rel, scale, kmax
+      real(wp) :: t0, rel, scale, kmax, t_iter, t_fact
       integer :: it, nchanged, maxit, j
       logical :: ok
       character(len=160) :: buf
@@ -220,17 +220,19 @@ contains
       history(:, 0) = contact%active
       self%t_factorize = 0
       self%t_solve = 0
-      if (present(log)) call log%say('  iter  active  changed     residual  max penetration  max pressure')
+      if (present(log)) call log%say('  iter  active  changed     residual  max penetration  max pressure'// &
+                                     '    time [s]  factorize [s]')
       do it = 1, maxit
          self%iterations = it
-         self%kb = self%k
+         t_iter = wall_time()
+         call copy_values(self%k, self%kb)
          call contact%add_stiffness(self%kb, ok)
          if (.not. ok) then
             ! the pairing left the candidate pairs of the pattern: new pattern and analysis
             call self%build_system(model, error, contact, u)
             if (allocated(error)) return
             if (present(log)) call log%say('        (contact pairs moved: matrix pattern rebuilt)')
-            self%kb = self%k
+            call copy_values(self%k, self%kb)
             call contact%add_stiffness(self%kb, ok)
             if (.not. ok) then
                call fatal_error(error, 'internal error: contact spring outside the rebuilt pattern', err_solver)
@@ -246,7 +248,8 @@ contains
          t0 = wall_time()
          call self%solver%factorize(self%kb, error)
          if (allocated(error)) return
-         self%t_factorize = self%t_factorize + (wall_time() - t0)
+         t_fact = wall_time() - t0
+         self%t_factorize = self%t_factorize + t_fact
          t0 = wall_time()
          call self%solver%solve(f, u, error)
          if (allocated(error)) return
@@ -276,8 +279,9 @@ contains
                  *norm2(u) + norm2(merge(0.0_wp, fext, fixed)) + norm2(fc)
          rel = 0.0_wp
          if (scale > 0.0_wp) rel = norm2(r)/scale
-         write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4)') it, count(contact%active), nchanged, &
-            rel, contact%max_penetration(), contact%max_pressure()
+         write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4)') it, &
+            count(contact%active), nchanged, rel, contact%max_penetration(), contact%max_pressure(), &
+            wall_time() - t_iter, t_fact
          if (present(log)) call log%say(trim(buf))
          history(:, it) = contact%active
          if (nchanged == 0 .and. rel <= model%controls%residual_tol) return
@@ -298,4 +302,20 @@ contains
          ' iterations (relative residual ', rel, ')'
       call fatal_error(error, trim(buf)//'; raise MAXIT on *CONTACT CONTROLS or check the penalty', err_solver)
    end subroutine solve_contact
+
+   !> b = a, copying only the values when b already has a's pattern (the common
+   !> case in the contact iterations: the pattern is fixed, the values change).
+   subroutine copy_values(a, b)
+      type(sym_csc_t), intent(in) :: a
+      type(sym_csc_t), intent(inout) :: b
+      logical :: same
+      same = allocated(b%val) .and. b%n == a%n
+      if (same) same = size(b%val) == size(a%val)
+      if (same) same = all(b%col_ptr == a%col_ptr)
+      if (same) then
+         b%val = a%val
+      else
+         b = a
+      end if
+   end subroutine copy_values
 end module vemcontact_driver_linear
