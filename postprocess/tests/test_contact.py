@@ -277,3 +277,21 @@ def test_joint_opens_then_closes(exe, tmp_path):
     assert d1["COPEN"][o][-1] < d1["COPEN"][o][0]
     # the tip node (1, 0.5) is shared by both faces: it is no slave node
     assert np.min(np.hypot(d1["x"] - 1.0, d1["y"] - 0.5)) > 1e-9
+
+
+def test_nonconvergence_keeps_completed_steps(exe, tmp_path):
+    """With one iteration allowed (*CONTACT CONTROLS, MAXIT=1): step 1 compresses
+    matching blocks (all nodes closed from the start: converged in one iteration),
+    step 2 lifts the top (the closed nodes must open: a second iteration is
+    needed) and stops with exit status 4 and a clear message; step 1 stays on
+    disk (VTU, PVD, HDF5) and nothing is written for step 2."""
+    deck = tmp_path / "nc.inp"
+    blocks_deck(deck, 4, 4, 1.0e5, steps=["*BOUNDARY\nTOP, 2, 2, -0.01\n", "*BOUNDARY\nTOP, 2, 2, 0.02\n"])
+    text = deck.read_text().replace("*BOUNDARY\nBOTTOM, 2", "*CONTACT CONTROLS, MAXIT=1\n*BOUNDARY\nBOTTOM, 2", 1)
+    deck.write_text(text)
+    r = run(exe, deck, tmp_path, expect=4)
+    assert "did not converge in 1 iterations" in r.stderr and "Traceback" not in r.stderr
+    assert (tmp_path / "nc_0001.vtu").exists() and not (tmp_path / "nc_0002.vtu").exists()
+    with h5py.File(tmp_path / "nc.h5") as f:
+        assert list(f["steps"].keys()) == ["0001"]
+    assert "nc_0001.vtu" in (tmp_path / "nc.pvd").read_text()
