@@ -2,6 +2,7 @@
 module vemcontact_app_cli
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_driver_linear, only: ordering_auto, ordering_metis, ordering_cholmod
+   use vemcontact_path, only: dirname
    implicit none
    private
 
@@ -103,7 +104,10 @@ contains
          call fatal_error(error, 'error: no input deck given'//new_line('a')//usage_text(), err_input)
          return
       end if
-      if (.not. allocated(cli%out_dir)) cli%out_dir = dirname(cli%deck)
+      if (.not. allocated(cli%out_dir)) then
+         cli%out_dir = dirname(cli%deck)
+         if (len(cli%out_dir) == 0) cli%out_dir = '.'
+      end if
       cli%job = job_name(cli%deck)
    end subroutine parse_command_line
 
@@ -116,20 +120,6 @@ contains
       if (length > 0) call get_command_argument(i, arg)
    end subroutine get_arg
 
-   !> Folder part of a path ("." if none).
-   pure function dirname(path) result(d)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable :: d
-      integer :: k
-      k = index(path, '/', back=.true.)
-      if (k == 0) then
-         d = '.'
-      else if (k == 1) then
-         d = '/'
-      else
-         d = path(:k - 1)
-      end if
-   end function dirname
 
    !> File name without folder and without a trailing ".inp".
    pure function job_name(path) result(j)

@@ -8,6 +8,7 @@ module vemcontact_output_pvd
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
    use vemcontact_model, only: string_t
    use vemcontact_output_vtu, only: replace_file
+   use vemcontact_path, only: dirname
    implicit none
    private
 
@@ -134,19 +135,6 @@ contains
    end function is_absolute
 
    !> Folder part of a path ('' for a bare file name).
-   pure function dirname(path) result(d)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable :: d
-      integer :: k
-      k = index(path, '/', back=.true.)
-      if (k == 0) then
-         d = ''
-      else if (k == 1) then
-         d = '/'
-      else
-         d = path(1:k - 1)
-      end if
-   end function dirname
 
    !> Components of a path with '', '.' and resolvable '..' removed; leading
    !> '..' of a relative path are kept, '..' at the root of an absolute one dropped.
