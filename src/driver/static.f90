@@ -63,6 +63,13 @@ contains
       if (contact%n > 0) then
          write (buf, '(2x,a,i0,a,i0,a)') 'contact: ', size(contact%pairs), ' pairs, ', contact%n, ' slave nodes'
          call log%say(trim(buf))
+         do ip_ = 1, size(model%pairs)
+            write (buf, '(4x,a,i0,a,i0,a,i0,a,es10.3,a)') 'pair ', ip_, ': ', contact%pairs(ip_)%nslave, &
+               ' slave nodes on ', size(contact%pairs(ip_)%seg, 2), ' master segments, K = ', &
+               contact%pairs(ip_)%slope, ' (pressure per unit overclosure)'
+            call log%say(trim(buf)//', '//model%surfaces(model%pairs(ip_)%slave)%name//' on '// &
+                         model%surfaces(model%pairs(ip_)%master)%name)
+         end do
          if (contact%nexcluded > 0) then
             write (buf, '(2x,a,i0,a)') 'note: ', contact%nexcluded, &
                ' slave nodes are also master nodes (joint tips, bonded nodes) and are left out of contact'
