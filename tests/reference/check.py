@@ -1,0 +1,123 @@
+"""Physics checks of the reference results themselves (tests/reference/*.h5).
+
+    PYTHONPATH=postprocess .venv/bin/python tests/reference/check.py [tests/reference]
+
+The same checks run on fresh runs in the test suite (README.md in this folder
+names each test); this script applies them to the stored files, so a
+regenerated reference can be checked before it is committed.  Prints one line
+per reference and exits 1 if a check fails.
+"""
+import glob
+import os
+import sys
+
+import h5py
+import numpy as np
+
+
+def load(path):
+    with h5py.File(path) as f:
+        out = {"x": f["mesh/coordinates"][()], "ids": f["mesh/node_ids"][()],
+               "off": f["mesh/element_offsets"][()], "conn": f["mesh/element_connectivity"][()], "steps": {}}
+        for k in f["steps"]:
+            g = f["steps"][k]
+            s = {n: g[n][()] for n in ("U", "S_element", "S_node")}
+            if "contact" in g:
+                s["pairs"] = {p: {n: g["contact"][p][n][()] for n in g["contact"][p]} for p in g["contact"]}
+            out["steps"][int(k)] = s
+    return out
+
+
+def cantilever(r):
+    """Example 1, VEM, 2d/b = 1: tip deflection (mean u_y of the end nodes) over
+    the exact 0.3 equals the ratio tests/unit/driver/test_cantilever.f90 computes
+    on the same mesh (0.14568, printed by that test), and lies in (0, 1)."""
+    u = r["steps"][1]["U"]
+    tip = u[np.abs(r["x"][:, 0] - 40) < 1e-12, 1].mean() / 0.3
+    return abs(tip - 0.14568) < 1e-5, f"tip deflection ratio {tip:.5f} (unit test: 0.14568 at 2d/b = 1)"
+
+
+def hertz(r, tol):
+    """Example 2: peak pressure against p0 = 83.60, total force 100 (1 %)."""
+    c = r["steps"][1]["pairs"]["pair_1"]
+    x, p = c["coordinates"][:, 0], c["CPRESS"]
+    o = np.argsort(x)
+    force = np.trapz(p[o], x[o])
+    err = p.max() / 83.60 - 1
+    return abs(err) < tol and abs(force / 100 - 1) < 0.01, \
+        f"peak pressure {p.max():.2f} ({err:+.2%} of 83.60, allowed {tol:.0%}), force {force:.2f}"
+
+
+def interface(r, scatter):
+    """Example 3: mean pressure for 1 < x < 3 between the laterally free and the
+    confined plane-strain values, little scatter (non-matching meshes)."""
+    c = r["steps"][1]["pairs"]["pair_1"]
+    e, nu, eps = 1e9, 0.3, 0.05
+    free, confined = e / (1 - nu**2) * eps, e * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) * eps
+    mid = (c["coordinates"][:, 0] > 1) & (c["coordinates"][:, 0] < 3)
+    p = c["CPRESS"][mid]
+    ok = (c["STATUS"] == 1).all() and free < p.mean() < confined and p.std() / p.mean() < scatter
+    return ok, (f"mean pressure {p.mean():.4e} in ({free:.4e}, {confined:.4e}), "
+                f"scatter {p.std() / p.mean():.2%} (allowed {scatter:.0%})")
+
+
+def dam(r):
+    """Example 4: zero displacements after the geostatic step, the crest moves
+    downstream under the reservoir, the joint carries pressure in both steps."""
+    s1, s2 = r["steps"][1], r["steps"][2]
+    crest = np.argmax(r["x"][:, 1])
+    ok = (np.abs(s1["U"]).max() == 0 and s2["U"][crest, 0] > 0
+          and s1["pairs"]["pair_1"]["CPRESS"].max() > 0 and s2["pairs"]["pair_1"]["CPRESS"].max() > 0)
+    return ok, (f"step 1 max|U| = {np.abs(s1['U']).max():g}, step 2 crest u_x = {s2['U'][crest, 0]:.4e}, "
+                f"joint peak pressure {s1['pairs']['pair_1']['CPRESS'].max():.4e} / {s2['pairs']['pair_1']['CPRESS'].max():.4e}")
+
+
+def block(r):
+    """Self-weight block: mean sigma_yy across horizontal cuts = -rho g depth (1 %)."""
+    x, off, conn, s = r["x"], r["off"], r["conn"], r["steps"][1]["S_element"]
+    worst = 0.0
+    for cut in (0.3, 0.5, 0.7):
+        num = den = ycen = 0.0
+        for e in range(len(off) - 1):
+            p = x[conn[off[e]:off[e + 1]]]
+            cr = p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]
+            a = 0.5 * cr.sum()
+            cy = np.sum((p[:, 1] + np.roll(p[:, 1], -1)) * cr) / (6 * a)
+            if abs(cy - cut) < 0.05:
+                num, den, ycen = num + a * s[e, 1], den + a, ycen + a * cy
+        expected = -2400 * 9.81 * (1.0 - ycen / den)
+        worst = max(worst, abs(num / den / expected - 1))
+    return worst < 0.01, f"section equilibrium at y = 0.3, 0.5, 0.7 within {worst:.3%}"
+
+
+def check(path):
+    job = os.path.basename(path)[:-3]
+    r = load(path)
+    if job == "example1_cantilever":
+        return cantilever(r)
+    if job.startswith("hertz_"):
+        # 1 % on 1155 elements (test_contact.py::test_hertz_1155); the coarser meshes
+        # are not held to a published accuracy: 5 % (they converge towards it)
+        return hertz(r, 0.01 if "_1155_" in job else 0.05)
+    if job.startswith("interface_"):
+        # 5 % as test_inputs.py asks of the 200-cell mesh; 10 % on the coarsest (50 cells)
+        return interface(r, 0.10 if job.endswith("_50") else 0.05)
+    if job == "dam_joint":
+        return dam(r)
+    if job == "block_selfweight":
+        return block(r)
+    return False, "no check known for this deck: add one"
+
+
+def main(argv):
+    folder = argv[1] if len(argv) > 1 else os.path.dirname(os.path.abspath(__file__))
+    failed = 0
+    for path in sorted(glob.glob(os.path.join(folder, "*.h5"))):
+        ok, text = check(path)
+        failed += not ok
+        print(f"{'ok  ' if ok else 'FAIL'} {os.path.basename(path)}: {text}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
