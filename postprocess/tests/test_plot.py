@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 ENV = dict(os.environ, PYTHONPATH=os.path.join(os.path.dirname(__file__), ".."))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
@@ -114,3 +115,18 @@ def test_truncated_vtu(block_result, tmp_path):
     p = tmp_path / "cut.vtu"
     p.write_bytes(src[: len(src) // 2])
     one_line_error(run_plot(str(p)), "cut.vtu")
+
+
+def test_plot_draws_contact_faces(vemcontact, tmp_path):
+    """A contact run's pictures carry its slave nodes (the .pvd's part 1)."""
+    subprocess.run([vemcontact, "-q", "-o", str(tmp_path), os.path.join(ROOT, "inputs", "hertz_389_vem.inp")],
+                   check=True)
+    from vctools.plot.results import contact_file, read_contact_points, step_files
+    pvd = str(tmp_path / "hertz_389_vem.pvd")
+    step = step_files(pvd)[-1]
+    cfile = contact_file(pvd, step)
+    assert cfile and cfile.endswith("hertz_389_vem_contact_0001.vtu")
+    pts, status = read_contact_points(cfile)
+    assert len(pts) == 17 and status.sum() > 0
+    r = run_plot(pvd, "--field", "S:yy", "--deformed", "auto", "-o", str(tmp_path / "pics"))
+    assert r.returncode == 0, r.stderr

@@ -13,7 +13,7 @@ import argparse
 import os
 import sys
 
-from .results import ResultError, read_vtu, step_files
+from .results import ResultError, contact_file, read_contact_points, read_vtu, step_files
 from .contour import plot
 
 
@@ -41,6 +41,8 @@ def main(argv=None) -> int:
         deformed = None
         if a.deformed is not None:
             deformed = "auto" if a.deformed == "auto" else float(a.deformed)
+        cfile = contact_file(a.result, vtu)
+        contact = read_contact_points(cfile) if cfile and os.path.exists(cfile) else None
         outdir = a.output or os.path.dirname(os.path.abspath(vtu))
         os.makedirs(outdir, exist_ok=True)
         job = os.path.splitext(os.path.basename(vtu))[0]
@@ -57,7 +59,7 @@ def main(argv=None) -> int:
             out = os.path.join(outdir, f"{job}_{f.replace(':', '_')}.{a.format}")
             units = a.units.split(",")
             unit = units[0] if f.removeprefix("cell:").startswith("U") or len(units) == 1 else units[1]
-            plot(res, f, out, deformed=deformed, units=unit, lines=lines)
+            plot(res, f, out, deformed=deformed, units=unit, lines=lines, contact=contact)
             print(out)
     except ResultError as exc:
         print(f"vc-plot: error: {exc}", file=sys.stderr)

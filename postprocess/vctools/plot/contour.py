@@ -15,7 +15,8 @@ def fan_triangles(polygons) -> np.ndarray:
 
 
 def plot(res: PolyResult, spec: str, out: str, deformed: float | str | None = None,
-         units: str = "", title: str | None = None, lines: list | None = None) -> float:
+         units: str = "", title: str | None = None, lines: list | None = None,
+         contact: tuple | None = None) -> float:
     """Draw `spec` on the (optionally deformed) mesh into `out` (.png or .pdf).
     Returns the deformation scale used (0 when undeformed)."""
     import matplotlib
@@ -36,7 +37,10 @@ def plot(res: PolyResult, spec: str, out: str, deformed: float | str | None = No
             scale = float(deformed)
         xy = xy + scale * u
     values, where, label = field_values(res, spec)
-    fig, ax = plt.subplots(figsize=(8, 5.5), dpi=150)
+    # figure shaped after the domain (plus room for the colour bar)
+    ext = np.ptp(xy, axis=0)
+    aspect = float(ext[0] / ext[1]) if ext[1] > 0 else 1.0
+    fig, ax = plt.subplots(figsize=(min(11.0, max(4.5, 5.0 * aspect + 2.2)), 5.5), dpi=150)
     verts = [xy[p] for p in res.polygons]
     if where == "point":
         tri = Triangulation(xy[:, 0], xy[:, 1], fan_triangles(res.polygons))
@@ -48,6 +52,20 @@ def plot(res: PolyResult, spec: str, out: str, deformed: float | str | None = No
     for line in lines or []:
         seg = np.asarray(line, dtype=float)
         ax.plot(seg[:, 0], seg[:, 1], color="red", lw=1.5)
+    if contact is not None:
+        # slave nodes of the contact faces, at their undeformed positions plus the
+        # drawn deformation: filled when closed, hollow when open
+        pts, status = contact
+        shown = pts.copy()
+        if scale:
+            from scipy.spatial import cKDTree
+            _, idx = cKDTree(res.points).query(pts)
+            shown = shown + scale * np.asarray(res.point_data["U"])[idx, :2]
+        closed = status == 1
+        ax.scatter(shown[closed, 0], shown[closed, 1], s=9, c="red", marker="o", label="contact closed", zorder=3)
+        ax.scatter(shown[~closed, 0], shown[~closed, 1], s=9, facecolors="none", edgecolors="red",
+                   marker="o", label="contact open", zorder=3)
+        ax.legend(loc="best", fontsize=7)
     ax.autoscale_view()
     ax.set_aspect("equal")
     ax.set_xlabel("x")

@@ -45,6 +45,36 @@ def step_files(path: str) -> list[str]:
     return files
 
 
+def contact_file(pvd_path: str, step_file: str) -> str | None:
+    """The contact point set (part 1) written for the same time step as `step_file`."""
+    if not pvd_path.endswith(".pvd"):
+        return None
+    root = ET.parse(pvd_path).getroot()
+    base = os.path.dirname(pvd_path)
+    sets = list(root.iter("DataSet"))
+    times = {os.path.join(base, ds.get("file", "")): ds.get("timestep") for ds in sets}
+    t = times.get(step_file)
+    for ds in sets:
+        if ds.get("part", "0") == "1" and ds.get("timestep") == t:
+            return os.path.join(base, ds.get("file", ""))
+    return None
+
+
+def read_contact_points(path: str) -> tuple[np.ndarray, np.ndarray]:
+    """Slave nodes (undeformed coordinates) and their status (1 closed, 0 open)."""
+    import meshio
+
+    sink = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(sink), contextlib.redirect_stderr(sink):
+            mesh = meshio.read(path, file_format="vtu")
+    except (Exception, SystemExit):
+        raise ResultError(f"{path}: cannot be read as a VTK XML file (contact points)") from None
+    if "STATUS" not in mesh.point_data:
+        raise ResultError(f"{path}: lacks STATUS: not a vemcontact contact file")
+    return np.asarray(mesh.points)[:, :2], np.asarray(mesh.point_data["STATUS"]).astype(int)
+
+
 def read_vtu(path: str) -> PolyResult:
     """Read one step written by vemcontact."""
     import meshio  # imported late: the package is only needed here
