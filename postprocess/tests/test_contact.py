@@ -295,3 +295,26 @@ def test_nonconvergence_keeps_completed_steps(exe, tmp_path):
     with h5py.File(tmp_path / "nc.h5") as f:
         assert list(f["steps"].keys()) == ["0001"]
     assert "nc_0001.vtu" in (tmp_path / "nc.pvd").read_text()
+
+
+@pytest.mark.parametrize("factor", [1e12, 1e18])
+def test_extreme_penalty_is_diagnosed(exe, tmp_path, factor):
+    """Far beyond any useful penalty (K = 1e12 and 1e18 times E/h) the contact
+    system is too ill-conditioned (or loses positive definiteness to round-off):
+    the run stops with exit status 4 and says which spring ratio is to blame,
+    instead of cycling on round-off or returning a wrong pressure."""
+    blocks_deck(tmp_path / "x.inp", 4, 4, factor * 1000.0, 1000.0)
+    r = run(exe, tmp_path / "x.inp", tmp_path, expect=4)
+    assert "lower the penalty slope K" in r.stderr
+    assert ("too ill-conditioned" in r.stderr) or ("not positive definite" in r.stderr)
+
+
+def test_stiff_penalty_warns(exe, tmp_path):
+    """At K = 1e10 E/h the answer is still usable (pressure within 1e-3) but the log
+    warns that accuracy is lost (rcond about 7e-11)."""
+    young, penalty = 1000.0, 1e10 * 1000.0
+    blocks_deck(tmp_path / "w.inp", 4, 4, penalty, young)
+    run(exe, tmp_path / "w.inp", tmp_path)
+    assert "warning: ill-conditioned system" in (tmp_path / "w.log").read_text()
+    d = read_csv(tmp_path / "w_contact_pair1_0001.csv")
+    assert np.max(np.abs(d["CPRESS"] / exact_pressure(young, penalty) - 1)) < 1e-3
