@@ -1,0 +1,326 @@
+"""The five cases: their mesh sequences per family, the decks, and the measured errors.
+
+A case yields runs: (family, level label, mesh file, deck text, metrics function).
+Families: vem-voronoi (VEM on the mesher's Voronoi cells), vem-quad (VEM on structured
+quads), fem-quad (bilinear quads, 2x2 Gauss), fem-tri (constant-strain triangles: the
+same quads split).  The section's FORMULATION picks VEM or FEM on the same VPE/VPS mesh.
+"""
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+
+import fields
+import meshes
+
+FAMILIES = ("vem-voronoi", "vem-quad", "fem-quad", "fem-tri")
+FORMULATION = {"vem-voronoi": "VEM", "vem-quad": "VEM", "fem-quad": "FEM", "fem-tri": "FEM"}
+SHAPE = {"vem-voronoi": "voronoi", "vem-quad": "quad", "fem-quad": "quad", "fem-tri": "tri"}
+
+
+class Run:
+    def __init__(self, case, family, level, mesh_desc, deck, metrics, elements=None):
+        self.case, self.family, self.level = case, family, level
+        self.mesh_desc, self.deck, self.metrics, self.elements = mesh_desc, deck, metrics, elements
+
+
+def _rel_include(deck_dir, mesh_path):
+    return os.path.relpath(mesh_path, deck_dir)
+
+
+def _header(title, mesh_rel, E, nu, formulation, density=False):
+    s = (f"** accuracy study (bench/accuracy): {title}\n*HEADING\n{title}\n"
+         f"*INCLUDE, INPUT={mesh_rel}\n*MATERIAL, NAME=M\n*ELASTIC\n{E!r}, {nu!r}\n")
+    if density:
+        s += "*DENSITY\n1.0\n"
+    s += f"*SOLID SECTION, ELSET=B, MATERIAL=M, FORMULATION={formulation}\n1.0\n"
+    return s
+
+
+def _boundary_nodes(m, pred):
+    return [int(i) for i, (x, y) in zip(m.ids, m.xy) if pred(x, y)]
+
+
+# ----------------------------------------------------------------- manufactured
+def manufactured(work, quick=False):
+    case = fields.Manufactured()
+    fields.check_exact(case)
+    ns = [8, 16, 32, 64, 128, 256] if not quick else [8, 16, 32]
+    b = case.body_force()
+    g, d = float(np.linalg.norm(b)), b / np.linalg.norm(b)
+    for fam in FAMILIES:
+        levels = list(ns)
+        if fam == "fem-tri" and not quick:
+            levels.append(512)             # the cheapest element per unknown: one more level
+        for n in levels:
+            shape = SHAPE[fam]
+            if shape == "voronoi":
+                mp = meshes.rectangle(work + "/meshes", f"ms_vor_{n * n}", (0, 0, 1, 1), "voronoi", n * n,
+                                      lloyd=20 if n <= 128 else 10)
+                desc = f"{n * n} Voronoi cells"
+            else:
+                mp = meshes.rectangle(work + "/meshes", f"ms_{shape}_{n}", (0, 0, 1, 1), shape, (n, n))
+                desc = f"{n}x{n} {'quads' if shape == 'quad' else 'quads split in 2 triangles'}"
+            m = meshes.read_inp(mp)
+            deck = _header("manufactured quadratic solution", _rel_include(work + "/decks", mp),
+                           case.E, case.nu, FORMULATION[fam], density=True)
+            tol = 1e-9
+            bn = _boundary_nodes(m, lambda x, y: min(x, y, 1 - x, 1 - y) < tol)
+            u = case.u(m.xy[:, 0], m.xy[:, 1])
+            lines = ["*BOUNDARY"]
+            for i in bn:
+                k = m.index[i]
+                lines += [f"{i}, 1, 1, {u[k, 0]!r}", f"{i}, 2, 2, {u[k, 1]!r}"]
+            deck += "\n".join(lines) + f"\n*STEP\n*STATIC\n*DLOAD\nB, GRAV, {g!r}, {d[0]!r}, {d[1]!r}\n*END STEP\n"
+
+            def metrics(res, case=case):
+                return dict(energy=fields.energy_error(res, case), u_l2=fields.u_l2_error(res, case))
+            yield Run("manufactured", fam, n, desc, deck, metrics, len(m.elems))
+
+
+# ----------------------------------------------------------------- Timoshenko
+def _edge_forces(ys, traction):
+    """Consistent nodal forces of a traction t(y) on the edge nodes at heights ys
+    (sorted): int t N_i dy with linear N_i, by 3-point Gauss (exact for t quadratic)."""
+    gp = np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
+    gw = np.array([5, 8, 5]) / 9
+    f = np.zeros(len(ys))
+    for k in range(len(ys) - 1):
+        y0, y1 = ys[k], ys[k + 1]
+        h = y1 - y0
+        s = (gp + 1) / 2                     # 0..1
+        t = traction(y0 + s * h)
+        f[k] += (gw * t * (1 - s)).sum() * h / 2
+        f[k + 1] += (gw * t * s).sum() * h / 2
+    return f
+
+
+def timoshenko(work, quick=False):
+    case = fields.Timoshenko()
+    fields.check_exact(case, pts=[(5.0, 1.0), (20.0, -3.0), (40.0, 4.5)])
+    ks = [2, 4, 8, 16, 32, 64] if not quick else [2, 4, 8]    # ny = k, nx = 4k
+    L, D = case.L, case.D
+    for fam in FAMILIES:
+        levels = list(ks)
+        if fam == "fem-tri" and not quick:
+            levels.append(128)
+        for k in levels:
+            shape = SHAPE[fam]
+            box = (0.0, -D / 2, L, D / 2)
+            if shape == "voronoi":
+                cells = 4 * k * k
+                mp = meshes.rectangle(work + "/meshes", f"tc_vor_{cells}", box, "voronoi", cells, plane="stress",
+                                      lloyd=20 if cells <= 20000 else 10)
+                desc = f"{cells} Voronoi cells"
+            else:
+                mp = meshes.rectangle(work + "/meshes", f"tc_{shape}_{k}", box, shape, (4 * k, k), plane="stress")
+                desc = f"{4 * k}x{k} {'quads' if shape == 'quad' else 'quads split in 2 triangles'}"
+            m = meshes.read_inp(mp)
+            deck = _header("Timoshenko cantilever, parabolic end shear", _rel_include(work + "/decks", mp),
+                           case.E, case.nu, FORMULATION[fam])
+            tol = 1e-9 * L
+            clamp = _boundary_nodes(m, lambda x, y: x < tol)
+            tip = [i for i in _boundary_nodes(m, lambda x, y: x > L - tol)]
+            tip.sort(key=lambda i: m.xy[m.index[i], 1])
+            ys = np.array([m.xy[m.index[i], 1] for i in tip])
+            f = _edge_forces(ys, lambda y: case.P / (2 * case.I) * (D * D / 4 - y * y))
+            u = case.u(m.xy[:, 0], m.xy[:, 1])
+            lines = ["*BOUNDARY"]
+            for i in clamp:
+                kk = m.index[i]
+                lines += [f"{i}, 1, 1, {u[kk, 0]!r}", f"{i}, 2, 2, {u[kk, 1]!r}"]
+            lines += ["*STEP", "*STATIC", "*CLOAD"]
+            lines += [f"{i}, 2, {fi!r}" for i, fi in zip(tip, f) if fi != 0.0]
+            deck += "\n".join(lines) + "\n*END STEP\n"
+
+            def metrics(res, case=case, tipy=ys, L=L):
+                x = res["x"]
+                on = np.abs(x[:, 0] - L) < 1e-9 * L
+                order = np.argsort(x[on, 1])
+                uy = np.interp(0.0, x[on, 1][order], res["U"][on, 1][order])
+                return dict(tip=abs(uy - case.tip()) / abs(case.tip()),
+                            energy=fields.energy_error(res, case), u_l2=fields.u_l2_error(res, case))
+            yield Run("timoshenko", fam, k, desc, deck, metrics, len(m.elems))
+
+
+# ----------------------------------------------------------------- Lame
+def lame(work, quick=False):
+    case = fields.Lame()
+    fields.check_exact(case, pts=[(1.2, 0.3), (0.5, 1.5), (1.0, 1.0)])
+    nrs = [4, 8, 16, 32, 64, 128] if not quick else [4, 8, 16]
+    a, b = case.a, case.b
+    for fam in FAMILIES:
+        levels = list(nrs)
+        if fam == "fem-tri" and not quick:
+            levels.append(256)
+        for nr in levels:
+            shape = SHAPE[fam]
+            nt = int(round(math.pi / 2 * (a + b) / 2 * nr / (b - a)))      # square cells at mid radius
+            if shape == "voronoi":
+                cells = nr * nt
+                mp = meshes.annulus_voronoi(work + "/meshes", f"lc_vor_{cells}", a, b, cells,
+                                            lloyd=20 if cells <= 20000 else 10)
+                desc = f"{cells} Voronoi cells"
+            else:
+                mp = meshes.annulus_polar(work + "/meshes", f"lc_{shape}_{nr}", a, b, nr, nt, shape)
+                desc = f"{nr}x{nt} {'quads' if shape == 'quad' else 'quads split in 2 triangles'} (r x theta)"
+            m = meshes.read_inp(mp)
+            deck = _header("Lame thick cylinder, internal pressure", _rel_include(work + "/decks", mp),
+                           case.E, case.nu, FORMULATION[fam])
+            tol = 1e-9
+            r = np.hypot(m.xy[:, 0], m.xy[:, 1])
+            # sides on the inner boundary: boundary sides (in one element only) whose
+            # midpoint is nearer the bore than the outer arc, not on the symmetry lines
+            # (Voronoi cells split the polygon's chords, so their nodes need not be on r = a)
+            count = {}
+            for e, c in m.elems:
+                for s in range(len(c)):
+                    key = frozenset((c[s], c[(s + 1) % len(c)]))
+                    count[key] = count.get(key, 0) + 1
+            lines = ["*BOUNDARY"]
+            lines += [f"{i}, 1" for i in _boundary_nodes(m, lambda x, y: abs(x) < tol)]
+            lines += [f"{i}, 2" for i in _boundary_nodes(m, lambda x, y: abs(y) < tol)]
+            lines += ["*STEP", "*STATIC", "*DLOAD"]
+            for e, c in m.elems:
+                for s in range(len(c)):
+                    n1, n2 = c[s], c[(s + 1) % len(c)]
+                    if count[frozenset((n1, n2))] != 1:
+                        continue
+                    p1, p2 = m.xy[m.index[n1]], m.xy[m.index[n2]]
+                    mid = (p1 + p2) / 2
+                    on_sym = (p1[0] < tol and p2[0] < tol) or (p1[1] < tol and p2[1] < tol)
+                    if not on_sym and math.hypot(*mid) < (a + b) / 2:
+                        lines.append(f"{e}, P{s + 1}, {case.p!r}")
+            deck += "\n".join(lines) + "\n*END STEP\n"
+
+            def metrics(res, case=case):
+                x = res["x"]
+                rr = np.hypot(x[:, 0], x[:, 1])
+                at = np.abs(rr - case.a) < 1e-9
+                c, s = x[at, 0] / rr[at], x[at, 1] / rr[at]
+                Sn = res["Sn"][at]
+                stt = Sn[:, 0] * s * s + Sn[:, 1] * c * c - 2 * Sn[:, 3] * s * c
+                ex = case.polar_stress(case.a)[1]
+                ur = res["U"][:, 0] * x[:, 0] / rr + res["U"][:, 1] * x[:, 1] / rr
+                w = fields.nodal_weights(res)
+                ure = case.ur(rr)
+                return dict(u_l2=math.sqrt((w * (ur - ure) ** 2).sum() / (w * ure ** 2).sum()),
+                            energy=fields.energy_error(res, case),
+                            hoop=float(np.abs(stt - ex).mean() / ex))
+            yield Run("lame", fam, nr, desc, deck, metrics, len(m.elems))
+
+
+# ----------------------------------------------------------------- Hertz
+HERTZ_P0, HERTZ_A = 83.60, 1.523
+HERTZ_SCENE = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex2_hertz.toml")).read().split("[[variant]]")[0]
+
+
+def hertz(work, quick=False):
+    """The paper's Hertz half model (inputs/hertz_*: materials, K = 1e5, load 100 at the
+    top) on its mesh family (postprocess/scenes/ex2_hertz.toml, same gradings): the
+    paper's 389, 600 and 1155-element meshes, then the divisions of the 600-element mesh
+    times 2, 4 and 8 (bench/hertz_refined.toml's h20k and h100k are close to x3.3 and x7.5)."""
+    base_disc, base_block = (12, 12, 6), (16, 15)
+    levels = [("389", (10, 10, 4), (13, 13)), ("600", base_disc, base_block),
+              ("1155", (15, 15, 10), (24, 20))]
+    for s in (2, 4, 8):
+        levels.append((f"600x{s}", tuple(s * v for v in base_disc), tuple(s * v for v in base_block)))
+    if quick:
+        levels = levels[:3]
+    deck_text = open(os.path.join(meshes.ROOT, "inputs/hertz_1155_vem.inp")).read()
+    for fam in ("vem-quad", "fem-quad", "fem-tri"):
+        shape = SHAPE[fam]
+        for name, dd, bd in levels:
+            toml = HERTZ_SCENE.replace('mesher = "quad"', f'mesher = "{shape}"')
+            toml = toml.replace("divisions = [12, 12, 6]", f"divisions = {list(dd)}")
+            toml = toml.replace("divisions = [16, 15]", f"divisions = {list(bd)}")
+            mp = meshes.mesher(toml, f"hz_{shape}_{name}", work + "/meshes")
+            m = meshes.read_inp(mp)
+            deck = deck_text.replace("meshes/ex2_hertz_1155_vem.inp", _rel_include(work + "/decks", mp))
+            deck = deck.replace("FORMULATION=VEM", f"FORMULATION={FORMULATION[fam]}")
+            desc = f"disc {dd}, block {bd[0]}x{bd[1]} {'quads' if shape == 'quad' else 'split quads'}"
+
+            def metrics(res):
+                c = res["contact"]
+                p, xs = c["CPRESS"], c["coordinates"][:, 0]
+                pmax = float(p.max())
+                sel = p > 0.3 * pmax          # fit p^2 = p0^2 (1 - x^2/a^2) away from the edge
+                a = float("nan")
+                if sel.sum() >= 2:
+                    slope, icpt = np.polyfit(xs[sel] ** 2, p[sel] ** 2, 1)
+                    if slope < 0 < icpt:
+                        a = math.sqrt(-icpt / slope)
+                return dict(peak=abs(pmax - HERTZ_P0) / HERTZ_P0, halfwidth=abs(a - HERTZ_A) / HERTZ_A,
+                            peak_value=pmax, halfwidth_value=a)
+            yield Run("hertz", fam, name, desc, deck, metrics, len(m.elems))
+
+
+# ----------------------------------------------------------------- interface
+IF_E, IF_NU, IF_K, IF_D = 1.0e9, 0.3, 1.0e12, 0.1
+
+
+def interface_exact():
+    """Both blocks in uniaxial strain (rollers on the sides): sigma_yy = -p with
+    2 p/E' + p/K = 0.1, E' = E(1-nu)/((1+nu)(1-2nu)); sigma_xx = sigma_zz = nu/(1-nu) sigma_yy."""
+    Ep = IF_E * (1 - IF_NU) / ((1 + IF_NU) * (1 - 2 * IF_NU))
+    return IF_D / (2 / Ep + 1 / IF_K)
+
+
+def interface(work, quick=False):
+    """The paper's interface (inputs/interface_*: two blocks [0,4]x[0,1] and [0,4]x[1,2]
+    meshed independently, E = 1e9, nu = 0.3, K = 1e12, top moved by -0.1) with rollers
+    on the sides (u_x = 0 on LEFT and RIGHT) so that the answer is known: a uniform
+    pressure p = 0.1/(2/E' + 1/K).  The paper's decks clamp the top and bottom in x
+    and leave the sides free, which has end effects and no closed form."""
+    scene = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex3_interface.toml")).read().split("[[variant]]")[0]
+    p = interface_exact()
+    ks = [1, 2, 4, 8, 16] if not quick else [1, 2]
+    for fam in FAMILIES:
+        shape = SHAPE[fam]
+        for k in ks:
+            toml = scene
+            if shape == "voronoi":
+                cells = 100 * k * k                   # per block; the paper's 200 at k = 1
+                toml = toml.replace("cells = 100", f"cells = {cells}")
+                if cells > 20000:
+                    toml = toml.replace("lloyd = 40", "lloyd = 10")
+                desc = f"2 x {cells} Voronoi cells"
+            else:
+                toml = toml.replace('mesher = "voronoi"', f'mesher = "{shape}"')
+                toml = toml.replace("divisions = [24, 6]", f"divisions = [{24 * k}, {6 * k}]")
+                toml = toml.replace("divisions = [20, 5]", f"divisions = [{20 * k}, {5 * k}]")
+                desc = f"{24 * k}x{6 * k} below, {20 * k}x{5 * k} above {'quads' if shape == 'quad' else 'split quads'}"
+            mp = meshes.mesher(toml, f"if_{shape}_{k}", work + "/meshes")
+            m = meshes.read_inp(mp)
+            deck = (f"** accuracy study (bench/accuracy): interface under uniform compression, rollers\n"
+                    f"*HEADING\ninterface, uniaxial strain\n*INCLUDE, INPUT={_rel_include(work + '/decks', mp)}\n"
+                    f"*MATERIAL, NAME=ROCK\n*ELASTIC\n{IF_E!r}, {IF_NU!r}\n"
+                    f"*SOLID SECTION, ELSET=LOWER, MATERIAL=ROCK, FORMULATION={FORMULATION[fam]}\n1.0\n"
+                    f"*SOLID SECTION, ELSET=UPPER, MATERIAL=ROCK, FORMULATION={FORMULATION[fam]}\n1.0\n"
+                    f"*SURFACE INTERACTION, NAME=INTERFACE\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+                    f"{IF_K!r}\n*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=NODE TO SURFACE\n"
+                    f"IFACE_SLAVE, IFACE_MASTER\n*BOUNDARY\nBOTTOM, 1, 2\nTOP, 1\nLEFT, 1\nRIGHT, 1\n"
+                    f"*STEP, NAME=COMPRESSION\n*STATIC\n*BOUNDARY\nTOP, 2, 2, {-IF_D!r}\n*END STEP\n")
+
+            def metrics(res, p=p):
+                c = res["contact"]
+                cp = c["CPRESS"]
+                syy = -res["Se"][:, 1]
+                xs = c["coordinates"][:, 0]
+                o = np.argsort(xs)
+                xo = xs[o]
+                trib = np.zeros(len(xo))               # tributary lengths along the slave side
+                trib[1:] += np.diff(xo) / 2
+                trib[:-1] += np.diff(xo) / 2
+                resultant = float((cp[o] * trib).sum())
+                return dict(pressure=float(np.abs(cp - p).max() / p),
+                            pressure_rms=float(math.sqrt(((cp - p) ** 2).mean()) / p),
+                            resultant=abs(resultant - 4.0 * p) / (4.0 * p),
+                            stress=float(np.abs(syy - p).max() / p))
+            yield Run("interface", fam, k, desc, deck, metrics, len(m.elems))
+
+
+CASES = {"manufactured": manufactured, "timoshenko": timoshenko, "lame": lame, "hertz": hertz,
+         "interface": interface}

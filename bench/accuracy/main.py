@@ -1,0 +1,225 @@
+"""Accuracy against cost: build the meshes and decks of every case, run vemcontact
+(Release) REPEAT times per deck, measure the errors against the known answers, write
+bench/results/accuracy.csv (and accuracy_runs.csv with every timing), the figures
+docs/figures/accuracy_<case>.png and docs/accuracy-vs-speed.md.
+
+    usage: bash bench/accuracy/run.sh [--quick] [--repeat N] [--cases a,b] [--work DIR]
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import platform
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(__file__))
+import cases      # noqa: E402
+import fields     # noqa: E402
+import meshes     # noqa: E402
+import report     # noqa: E402
+
+ROOT = meshes.ROOT
+EXE = os.path.join(ROOT, "build", "vemcontact")
+_TOTAL = re.compile(r"^\s*total\s+([0-9.Ee+-]+)\s*s", re.M)
+_UNK = re.compile(r"unknowns\s+(\d+)")
+_ITERS = re.compile(r"contact converged in (\d+) iteration")
+
+
+def run_once(deck, outdir):
+    t0 = time.perf_counter()
+    r = subprocess.run([EXE, "-q", "-o", outdir, deck], capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    job = os.path.splitext(os.path.basename(deck))[0]
+    log = open(os.path.join(outdir, job + ".log")).read() if os.path.exists(os.path.join(outdir, job + ".log")) else ""
+    if r.returncode != 0:
+        raise RuntimeError(f"vemcontact failed ({r.returncode}) on {deck}:\n{r.stdout}\n{r.stderr}\n{log[-2000:]}")
+    total = float(_TOTAL.findall(log)[-1])
+    unk = int(_UNK.search(log).group(1))
+    it = _ITERS.search(log)
+    return wall, total, unk, (int(it.group(1)) if it else 0), os.path.join(outdir, job + ".h5")
+
+
+def snapshot_exe(work):
+    """Run a private copy of the executable: others may rebuild build/ during the study."""
+    global EXE
+    import shutil
+    dst = os.path.join(work, "bin", "vemcontact")
+    os.makedirs(os.path.dirname(dst), exist_ok=True)
+    for _ in range(60):
+        if os.access(EXE, os.X_OK):
+            try:
+                shutil.copy2(EXE, dst)
+                if subprocess.run([dst, "--version"], capture_output=True).returncode == 0:
+                    EXE = dst
+                    return
+            except OSError:
+                pass
+        time.sleep(5)
+    raise RuntimeError(f"{EXE} is not usable (being rebuilt?)")
+
+
+def source_state():
+    try:
+        head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
+                              text=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "src", "CMakeLists.txt"],
+                               capture_output=True, text=True).stdout.strip()
+        return f"commit {head}" + (" with uncommitted changes in src/" if dirty else "")
+    except OSError:
+        return "unknown commit"
+
+
+def machine():
+    cpu = platform.processor() or ""
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    mem = ""
+    try:
+        kb = int(open("/proc/meminfo").readline().split()[1])
+        mem = f", {kb / 2**20:.0f} GiB"
+    except (OSError, ValueError):
+        pass
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    return f"{os.cpu_count()} cores ({cpu}){mem}, {platform.system()} {platform.release()}", load
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true", help="3 coarse levels, 2 repeats: a smoke test")
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--cases", default=",".join(cases.CASES))
+    ap.add_argument("--work", default=os.path.join(ROOT, "out", "accuracy"))
+    ap.add_argument("--no-doc", action="store_true", help="do not rewrite docs/ (with --quick: the default)")
+    ap.add_argument("--report-only", action="store_true",
+                    help="only redraw the figures and the document from bench/results/accuracy.csv")
+    args = ap.parse_args(argv)
+    if args.report_only:
+        return report_only(os.path.abspath(args.work))
+    repeat = 2 if args.quick else args.repeat
+    work = os.path.abspath(args.work)
+    for sub in ("decks", "out", "meshes"):
+        os.makedirs(os.path.join(work, sub), exist_ok=True)
+    snapshot_exe(work)
+    mach, load0 = machine()
+    rowdir = os.path.join(work, "rows" + ("_quick" if args.quick else ""))
+    os.makedirs(rowdir, exist_ok=True)
+    for cname in args.cases.split(","):
+        print(f"== {cname}", flush=True)
+        rows, timings, failed = [], [], set()
+        t_case = time.time()
+        for run in cases.CASES[cname](work, quick=args.quick):
+            if run.family in failed:
+                continue
+            job = f"{run.case}_{run.family}_{run.level}".replace(".", "_")
+            deck = os.path.join(work, "decks", job + ".inp")
+            with open(deck, "w") as f:
+                f.write(run.deck)
+            outdir = os.path.join(work, "out", job)
+            walls, totals = [], []
+            row = dict(case=run.case, family=run.family, level=run.level, mesh=run.mesh_desc,
+                       elements=run.elements, status="ok")
+            try:
+                for k in range(repeat):
+                    wall, total, unk, iters, h5 = run_once(deck, outdir)
+                    walls.append(wall)
+                    totals.append(total)
+                    timings.append(dict(case=run.case, family=run.family, level=run.level, repeat=k + 1,
+                                        wall_s=f"{wall:.5f}", log_total_s=f"{total:.5f}"))
+            except RuntimeError as e:
+                # a failed run is a result: recorded, reported, and the family's finer
+                # meshes are skipped
+                msg = next((ln for ln in str(e).splitlines() if ln.startswith("error:")), str(e).splitlines()[0])
+                unk = re.search(r"unknowns (\d+)", str(e))
+                row.update(status="failed: " + msg.replace(",", ";"), unknowns=int(unk.group(1)) if unk else 0,
+                           contact_iterations=0, time_s=float("nan"), wall_s=float("nan"),
+                           time_min_s=float("nan"), time_max_s=float("nan"), repeats=0)
+                rows.append(row)
+                failed.add(run.family)
+                print(f"  {run.family:12s} {str(run.level):>8s} FAILED: {msg}", flush=True)
+                continue
+            met = run.metrics(fields.read_result(h5))
+            row.update(unknowns=unk, contact_iterations=iters,
+                       time_s=statistics.median(totals), wall_s=statistics.median(walls),
+                       time_min_s=min(totals), time_max_s=max(totals), repeats=repeat)
+            row.update(met)
+            rows.append(row)
+            mets = ", ".join(f"{k} {v:.3e}" for k, v in met.items())
+            print(f"  {run.family:12s} {str(run.level):>8s} {unk:>8d} unknowns  {row['time_s']:.4f} s  {mets}",
+                  flush=True)
+        with open(os.path.join(rowdir, cname + ".json"), "w") as f:
+            json.dump(dict(rows=rows, timings=timings, elapsed=time.time() - t_case, repeat=repeat,
+                           load=[load0, os.getloadavg()[0]]), f)
+    # every case run so far in this work folder (a --cases run replaces only its cases)
+    rows, timings, elapsed = [], [], {}
+    for cname in cases.CASES:
+        path = os.path.join(rowdir, cname + ".json")
+        if os.path.exists(path):
+            d = json.load(open(path))
+            rows += d["rows"]
+            timings += d["timings"]
+            elapsed[cname] = d["elapsed"]
+    total_elapsed = sum(elapsed.values())
+    mach_load = (f"{mach}; load average {load0:.2f} at the start of the last run, {os.getloadavg()[0]:.2f} at "
+                 f"its end; vemcontact {source_state()}")
+    suffix = "_quick" if args.quick else ""
+    resdir = work if args.quick else os.path.join(ROOT, "bench", "results")
+    os.makedirs(resdir, exist_ok=True)
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(os.path.join(resdir, f"accuracy{suffix}.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, keys)
+        w.writeheader()
+        w.writerows(rows)
+    with open(os.path.join(resdir, f"accuracy{suffix}_runs.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, list(timings[0]))
+        w.writeheader()
+        w.writerows(timings)
+    print("elapsed " + ", ".join(f"{k} {v:.0f} s" for k, v in elapsed.items()) + f" on {mach_load}")
+    if not args.quick:
+        with open(os.path.join(work, "accuracy_machine.txt"), "w") as f:
+            f.write(f"{mach_load}\n{total_elapsed:.0f}\n{repeat}\n")
+    rows = [_numeric({k: r.get(k, "") for k in keys}) for r in rows]
+    if not (args.quick or args.no_doc):
+        report.write(rows, mach_load, total_elapsed, repeat)
+    elif args.quick:
+        report.write(rows, mach_load, total_elapsed, repeat, figdir=os.path.join(work, "figures"),
+                     doc=os.path.join(work, "accuracy-vs-speed.md"))
+
+
+def _numeric(r):
+    out = {}
+    for k, v in r.items():
+        if k in ("case", "family", "level", "mesh", "status"):
+            out[k] = v
+        else:
+            try:
+                out[k] = float(v)
+            except (TypeError, ValueError):
+                out[k] = float("nan")
+    return out
+
+
+def report_only(work):
+    path = os.path.join(ROOT, "bench", "results", "accuracy.csv")
+    rows = []
+    with open(path) as f:
+        for r in csv.DictReader(f):
+            rows.append(_numeric(r))
+    meta = open(os.path.join(work, "accuracy_machine.txt")).read().split("\n")
+    report.write(rows, meta[0], float(meta[1]), int(meta[2]))
+
+
+if __name__ == "__main__":
+    main()
