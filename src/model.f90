@@ -113,6 +113,10 @@ module vemcontact_model
       integer :: slave = 0                    !< index into model%surfaces
       integer :: master = 0                   !< index into model%surfaces (surface_element)
       integer :: interaction = 0              !< index into model%interactions
+      !> SMALL SLIDING (CalculiX): the pairing of each slave node (segment, xi, normal)
+      !> is found once in the undeformed configuration and kept; otherwise it is
+      !> found anew in the deformed configuration at every iteration
+      logical :: small_sliding = .false.
       type(source_loc_t) :: loc
    end type contact_pair_t
 

@@ -41,6 +41,8 @@ module vemcontact_contact_active_set
       integer :: nslave = 0
       real(wp) :: radius = 0.0_wp             !< search radius: twice the longest master segment
       real(wp) :: slope = 0.0_wp              !< penalty slope K of the interaction
+      logical :: small_sliding = .false.      !< pairing fixed at the undeformed state
+      logical :: paired = .false.             !< the small-sliding pairing has been made
    end type pair_data_t
 
    type :: contact_state_t
@@ -111,6 +113,7 @@ contains
                                        2.0_wp*norm2(model%x(:, seg(2, i)) - model%x(:, seg(1, i))))
          end do
          self%pairs(p)%slope = model%interactions(model%pairs(p)%interaction)%penalty
+         self%pairs(p)%small_sliding = model%pairs(p)%small_sliding
          self%pairs(p)%first = size(all_node)
          self%pairs(p)%nslave = size(node)
          self%nexcluded = self%nexcluded + nex
@@ -190,6 +193,18 @@ contains
             if (pd%nslave == 0) cycle
             lo = pd%first + 1
             hi = pd%first + pd%nslave
+            if (pd%small_sliding .and. pd%paired) then
+               ! the pairing stays that of the undeformed state: only the gaps move
+               do i = lo, hi
+                  if (self%iseg(i) == 0) cycle
+                  a = pd%seg(1, self%iseg(i))
+                  b = pd%seg(2, self%iseg(i))
+                  self%gap(i) = self%gap0(i) + dot_product(self%normal(:, i), &
+                                u(2*self%node(i) - 1:2*self%node(i)) - &
+                                ((1.0_wp - self%xi(i))*u(2*a - 1:2*a) + self%xi(i)*u(2*b - 1:2*b)))
+               end do
+               cycle
+            end if
             radius = search_radius(pd, u)
             call build_segment_grid(xc, pd%seg, radius, grid, error)
             if (allocated(error)) return
@@ -210,6 +225,7 @@ contains
                self%gap(i) = self%gap0(i) + dot_product(self%normal(:, i), u(2*self%node(i) - 1:2*self%node(i)) - &
                              ((1.0_wp - self%xi(i))*u(2*a - 1:2*a) + self%xi(i)*u(2*b - 1:2*b)))
             end do
+            pd%paired = .true.
          end associate
       end do
    contains

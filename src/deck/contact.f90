@@ -368,7 +368,7 @@ contains
          call err_here(p, 'ADJUST is not supported: vemcontact does not move slave nodes onto the master '// &
                        'surface', 'remove ADJUST; the gap or overclosure of the mesh is used as it is')
       end if
-      ! SMALL SLIDING is accepted: the pairing is that of a small-displacement model anyway
+      ! SMALL SLIDING (CalculiX's meaning): the pairing is fixed in the undeformed configuration
       nline = 0
       do
          call advance(p)
@@ -390,6 +390,7 @@ contains
             r%slave = to_upper(squeeze(field(p, 1)))
             r%master = to_upper(squeeze(field(p, 2)))
             r%interaction = inter
+            r%small_sliding = has_param(kw, 'SMALL SLIDING') .or. has_param(kw, 'SMALLSLIDING')
             r%loc = here(p)
          end associate
       end do
@@ -494,7 +495,8 @@ contains
                            loc_str(p, r%loc)//')', 'add *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR '// &
                            'and a data line with the slope K right after *SURFACE INTERACTION')
             end if
-            model%pairs(k) = contact_pair_t(slave=islave, master=imaster, interaction=iinter, loc=r%loc)
+            model%pairs(k) = contact_pair_t(slave=islave, master=imaster, interaction=iinter, &
+                                            small_sliding=r%small_sliding, loc=r%loc)
          end associate
       end do
    contains

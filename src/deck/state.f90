@@ -44,6 +44,7 @@ module vemcontact_deck_state
    !> A *CONTACT PAIR data line; the names are resolved once the whole deck is read.
    type :: pair_ref_t
       character(len=:), allocatable :: slave, master, interaction  !< upper case
+      logical :: small_sliding = .false.
       type(source_loc_t) :: loc
    end type pair_ref_t
 
