@@ -160,3 +160,19 @@ def test_dam_scene():
     c, s = m.esurfaces["UPSTREAM"]
     assert (m.cell_body[c] == 1).all()
     assert len(m.esurfaces["BOTTOM"][0]) > 5 and np.allclose(m.nodes[m.nsets["BOTTOM"], 1], 0)
+
+
+def test_tiled_mesh_is_exact_and_the_same_with_one_or_two_processes():
+    # many small tiles on a non-convex body: the bucketed halo search, redone tiles with a
+    # wider halo, clipped cells in several parts, in one and in two processes
+    pl = np.array([[0.5, 0.5], [1.5, 0.9], [2.5, 0.6]])
+    g = Grading([{"point": [1.5, 0.9], "ratio": 0.4, "radius": 1.0}], "B")
+    m1, m2 = (voronoi_group([VBody("B", STAR, 3000, g)], [Joint("J", pl)], seed=4, lloyd=4,
+                            per_tile=300, processes=p) for p in (1, 2))
+    assert np.array_equal(m1.nodes, m2.nodes) and np.array_equal(m1.conn, m2.conn)
+    assert m1.info["lloyd_energy"] == m2.info["lloyd_energy"]
+    exact = shapely.Polygon(STAR).area
+    assert abs(m1.cell_areas().sum() - exact) <= 1e-12 * exact
+    assert_valid_cells(m1)
+    assert_conforming(m1, shapely.Polygon(STAR).exterior, [pl])
+    _joint_checks(m1, pl, [pl[0], pl[-1]])

@@ -130,7 +130,19 @@ def merge_close(xy, tol):
     n = len(xy)
     if n < 2:
         return xy.copy(), np.arange(n)
-    pairs = cKDTree(xy).query_pairs(tol, output_type="ndarray")
+    if n > 20000:
+        # two points closer than tol are closer than tol in x: only runs of x-gaps <= tol
+        # can hold a pair, and those are few (the same pairs, from a much smaller tree)
+        o = np.argsort(xy[:, 0], kind="stable")
+        close = np.diff(xy[o, 0]) <= 2.0 * tol
+        m = np.zeros(n, dtype=bool)
+        m[:-1] |= close
+        m[1:] |= close
+        sub = np.sort(o[m])
+        pairs = sub[cKDTree(xy[sub]).query_pairs(tol, output_type="ndarray")] if len(sub) > 1 \
+            else np.zeros((0, 2), np.int64)
+    else:
+        pairs = cKDTree(xy).query_pairs(tol, output_type="ndarray")
     if len(pairs) == 0:
         return xy.copy(), np.arange(n)
     g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))

@@ -247,12 +247,14 @@ def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=
     ring = far_ring(0.5 * (lo + hi), size)
     shadow = shadows(dom_shape, segs)
     tess = Tessellator(ctx, per_tile=per_tile, processes=processes)
+    hmax = density.max_spacing()
     energies = []
     t0 = time.time()
     try:
         for it in range(lloyd + 1):
             seeds = np.concatenate([free, fixed])
-            helpers = np.concatenate([reflect(seeds, segs, contains, density.spacing(seeds), shadow=shadow), ring])
+            helpers = np.concatenate([reflect(seeds, segs, contains, density.spacing, shadow=shadow,
+                                              max_spacing=hmax), ring])
             final = it == lloyd
             mass, cen, energy, cells = tess.run(seeds, helpers, final=final)
             energies.append(float(energy.sum()))
@@ -299,8 +301,8 @@ def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=
     # body of each cell: its seed for whole cells, an interior point for pieces
     seeds = np.concatenate([free, fixed])
     reps = [seeds[np.concatenate(owners)]] if owners else []
-    for pc in piece_chunks:
-        reps.append(_interior_point(pc)[None, :])
+    if piece_chunks:
+        reps.append(_interior_points(piece_chunks))
     reps = np.concatenate(reps)
     cell_body = np.full(len(reps), -1)
     for k, b in enumerate(bodies):
@@ -313,11 +315,17 @@ def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=
             p = shapely.Point(reps[i])
             cell_body[i] = int(np.argmin([s.distance(p) for s in shapes]))
     # body corners and line vertices are nodes exactly; nodes on a boundary or line lie on it
-    nodes = _snap(nodes, ctx)
+    # (a vertex of a whole cell is farther than 10 tol from every boundary and line: only the
+    # nodes from clipped and cut pieces can move)
+    plain = np.zeros(len(nodes), dtype=bool)
+    plain[idmap[:len(first)]] = True
+    cut = np.flatnonzero(~plain)
+    nodes[cut] = _snap(nodes[cut], ctx)
     corners = np.concatenate([dom] + [ln for ln in lines])
-    d, near_c = cKDTree(corners).query(nodes)
-    hit = d <= tol
-    nodes[hit] = corners[near_c[hit]]
+    if len(cut):
+        d, near_c = cKDTree(corners).query(nodes[cut])
+        hit = d <= tol
+        nodes[cut[hit]] = corners[near_c[hit]]
     mesh = _compact(Mesh(nodes, ptr, conn, cell_body, [(b.name, b.etype) for b in bodies]))
     # nodes made by clipping and cutting may hang on a neighbour's edge
     if len(xypc):
@@ -345,6 +353,36 @@ def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=
         mesh.info["bodies_polygons"][b.name] = b.polygon
     mesh.info["tol"] = tol
     return mesh
+
+
+def _interior_points(pcs):
+    """_interior_point of many polygons: the centroid when it is inside (vectorised), else
+    the same fallbacks one by one."""
+    cnt = np.array([len(pc) for pc in pcs])
+    xy = np.concatenate(pcs)
+    n = len(pcs)
+    ptr = np.concatenate([[0], np.cumsum(cnt)])
+    cell = np.repeat(np.arange(n), cnt)
+    nxt = np.arange(len(xy)) + 1
+    nxt[ptr[1:] - 1] = ptr[:-1]
+    x, y = xy[:, 0], xy[:, 1]
+    xn, yn = x[nxt], y[nxt]
+    a = x * yn - xn * y
+    A = np.bincount(cell, weights=a, minlength=n) / 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = np.column_stack([np.bincount(cell, weights=(x + xn) * a, minlength=n),
+                             np.bincount(cell, weights=(y + yn) * a, minlength=n)]) / (6 * A[:, None])
+        # even-odd test of each centroid against its own polygon
+        py = c[cell, 1]
+        px = c[cell, 0]
+        cond = (y > py) != (yn > py)
+        xint = x + (py - y) * (xn - x) / (yn - y)
+    inside = (np.bincount(cell, weights=(cond & (px < xint)).astype(float), minlength=n) % 2) == 1
+    good = inside & (A != 0) & np.all(np.isfinite(c), axis=1)
+    out = c.copy()
+    for k in np.flatnonzero(~good):
+        out[k] = _interior_point(pcs[k])
+    return out
 
 
 def _interior_point(pc):

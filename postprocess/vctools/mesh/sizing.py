@@ -79,6 +79,10 @@ class Density:
                 assigned |= m
         return rho
 
+    def max_spacing(self) -> float:
+        """An upper bound of spacing(): the grading only refines (g <= 1, rho >= scale)."""
+        return float(np.sqrt(2.0 / (np.sqrt(3.0) * min(self.scale))))
+
     def spacing(self, xy: np.ndarray) -> np.ndarray:
         """Seed spacing of a hexagonal pattern with this density: cell area sqrt(3)/2 h^2."""
         return np.sqrt(2.0 / (np.sqrt(3.0) * self(xy)))

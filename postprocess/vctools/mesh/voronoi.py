@@ -113,6 +113,76 @@ def _ccw_coords(poly):
     return xy
 
 
+def _ring_coords(rings):
+    """Coordinates of linear rings without their closing points: (xy, ptr)."""
+    xy, idx = shapely.get_coordinates(rings, return_index=True)
+    cnt = np.bincount(idx, minlength=len(rings))
+    last = np.cumsum(cnt) - 1
+    keep = np.ones(len(xy), dtype=bool)
+    keep[last[cnt > 0]] = False
+    return xy[keep], np.concatenate([[0], np.cumsum(np.maximum(cnt - 1, 0))])
+
+
+def _ccw_csr(rings):
+    """_ccw_coords of many exterior rings at once: (xy, ptr), each ring counter-clockwise."""
+    xy, ptr = _ring_coords(rings)
+    n = len(ptr) - 1
+    cnt = np.diff(ptr)
+    cell = np.repeat(np.arange(n), cnt)
+    nxt = np.arange(len(xy)) + 1
+    nxt[ptr[1:][cnt > 0] - 1] = ptr[:-1][cnt > 0]
+    x, y = xy[:, 0], xy[:, 1]
+    s1 = np.bincount(cell, weights=x * y[nxt], minlength=n)
+    s2 = np.bincount(cell, weights=x[nxt] * y, minlength=n)
+    sgn = s1 - s2
+    # near-zero areas: decide exactly as _ccw_coords does
+    scale = np.bincount(cell, weights=np.abs(x * y[nxt]) + np.abs(x[nxt] * y), minlength=n)
+    for k in np.flatnonzero(np.abs(sgn) <= 1e-6 * scale):
+        xk, yk = x[ptr[k]:ptr[k + 1]], y[ptr[k]:ptr[k + 1]]
+        sgn[k] = np.dot(xk, np.roll(yk, -1)) - np.dot(np.roll(xk, -1), yk)
+    rev = np.repeat(sgn < 0, cnt)
+    pos = np.arange(len(xy))
+    start = np.repeat(ptr[:-1], cnt)
+    pos[rev] = (np.repeat(ptr[1:], cnt) - 1 - (pos - start))[rev]
+    return xy[pos], ptr
+
+
+def _clip_moments(clipped, clip_idx, seeds, lo, hi, ctx, ok, mass, cen, energy):
+    """Locality test and moments of the clipped cells: the loop of the final pass, vectorised
+    (same arithmetic, so the same bits), for the Lloyd iterations."""
+    parts, pidx = shapely.get_parts(clipped, return_index=True)
+    if len(parts):
+        keep = (shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 0)
+        parts, pidx = parts[keep], pidx[keep]
+    nparts = np.bincount(pidx, minlength=len(clip_idx))
+    empty = clip_idx[nparts == 0]
+    # the cell misses the domain (a seed on the boundary): it owns nothing
+    mass[empty], cen[empty], energy[empty] = 0.0, seeds[empty], 0.0
+    if not len(parts):
+        return
+    xy, cidx = shapely.get_coordinates(parts, return_index=True)
+    owner = pidx[cidx]
+    s = seeds[clip_idx[owner]]
+    d2 = np.hypot(xy[:, 0] - s[:, 0], xy[:, 1] - s[:, 1])
+    viol = ~np.all((xy - d2[:, None] >= lo) & (xy + d2[:, None] <= hi), axis=1)
+    bad = np.bincount(owner[viol], minlength=len(clip_idx)) > 0
+    has = nparts > 0
+    ok[clip_idx[has]] = ~bad[has]
+    # main part: the only one, else the one covering the seed, else the largest
+    first = np.searchsorted(pidx, np.arange(len(clip_idx)))
+    sel = first[has]
+    for k in np.flatnonzero(nparts > 1):
+        grp = parts[first[k]:first[k] + nparts[k]]
+        sk = shapely.Point(seeds[clip_idx[k]])
+        inside = [q for q, g in enumerate(grp) if g.covers(sk)]
+        sel[np.searchsorted(np.flatnonzero(has), k)] = first[k] + (
+            inside[0] if inside else max(range(len(grp)), key=lambda q: grp[q].area))
+    main_idx = clip_idx[has]
+    mxy, mptr = _ccw_csr(shapely.get_exterior_ring(parts[sel]))
+    mm, cc, ee = polygon_moments_csr(mptr, mxy, origin=seeds[main_idx], density=ctx.density)
+    mass[main_idx], cen[main_idx], energy[main_idx] = mm, cc, ee
+
+
 def tile_cells(P, gid, n_own, lo, hi, ctx, final):
     """Cells of the first n_own points of P (tile seeds; the rest is halo and helpers).
 
@@ -143,13 +213,27 @@ def tile_cells(P, gid, n_own, lo, hi, ctx, final):
     dv = np.hypot(V[:, 0] - seeds[fp, 0], V[:, 1] - seeds[fp, 1])
     rcell = np.zeros(n_own)
     np.maximum.at(rcell, fp, dv)
-    good_v = np.all((V - R[ft, None] >= lo) & (V + R[ft, None] <= hi), axis=1) & np.isfinite(R[ft])
-    ok = np.bincount(fp[~good_v], minlength=n_own) == 0
+    # locality test per triangle (its empty disc inside the box), then per cell
+    with np.errstate(invalid="ignore"):
+        good_t = np.all((C - R[:, None] >= lo) & (C + R[:, None] <= hi), axis=1) & np.isfinite(R)
+    ok = np.bincount(fp[~good_t[ft]], minlength=n_own) == 0
 
-    dist = distance_to_segments(seeds, ctx.segs)
+    # cells that reach a boundary (or a line, when final); only the segments that can be
+    # reached from the tile are measured (the others are farther than any cell's radius)
+    segs = ctx.segs
     if final and len(ctx.line_segs):
-        dist = np.minimum(dist, distance_to_segments(seeds, ctx.line_segs))
-    near = rcell >= dist - 1e-9 * ctx.size
+        segs = np.concatenate([segs, ctx.line_segs])
+    near = np.zeros(n_own, dtype=bool)
+    if n_own:
+        reach = float(np.nanmax(rcell)) + 2e-9 * ctx.size
+        slo_ = seeds.min(0) - reach
+        shi_ = seeds.max(0) + reach
+        smin = segs.min(1)
+        smax = segs.max(1)
+        cand = np.all((smax >= slo_) & (smin <= shi_), axis=1) | ~np.isfinite(reach)
+        if cand.any():
+            dist = distance_to_segments(seeds, segs[cand])
+            near = rcell >= dist - 1e-9 * ctx.size
     # moments by kites: the cell of seed a is the signed union over its triangles (a, b, c)
     # of (a, m_ab, C) and (a, C, m_ca) -- exact for any Delaunay triangle, obtuse included
     pa = seeds[fp]
@@ -206,35 +290,37 @@ def tile_cells(P, gid, n_own, lo, hi, ctx, final):
         ring_xy, ring_id = ring_xy[~dup], ring_id[~dup]
         polys = shapely.polygons(shapely.linearrings(ring_xy, indices=ring_id))
         clipped = shapely.intersection(polys, ctx.shape)
-        mains, main_idx = [], []
-        for k, i in enumerate(clip_idx):
-            parts = [g for g in shapely.get_parts(clipped[k]) if g.geom_type == "Polygon" and g.area > 0]
-            s = seeds[i]
-            if not parts:
-                # the cell misses the domain (a seed on the boundary): it owns nothing
-                mass[i], cen[i], energy[i] = 0.0, s, 0.0
-                continue
-            allxy = np.concatenate([shapely.get_coordinates(g) for g in parts])
-            d2 = np.hypot(allxy[:, 0] - s[0], allxy[:, 1] - s[1])
-            ok[i] = bool(np.all((allxy - d2[:, None] >= lo) & (allxy + d2[:, None] <= hi)))
-            if len(parts) == 1:
-                main = parts[0]
-            else:
-                inside = [g for g in parts if g.covers(shapely.Point(s))]
-                main = inside[0] if inside else max(parts, key=lambda g: g.area)
-            mains.append(_ccw_coords(main))
-            main_idx.append(i)
-            if final:
+        if not final:
+            _clip_moments(clipped, clip_idx, seeds, lo, hi, ctx, ok, mass, cen, energy)
+        else:
+            mains, main_idx = [], []
+            for k, i in enumerate(clip_idx):
+                parts = [g for g in shapely.get_parts(clipped[k]) if g.geom_type == "Polygon" and g.area > 0]
+                s = seeds[i]
+                if not parts:
+                    # the cell misses the domain (a seed on the boundary): it owns nothing
+                    mass[i], cen[i], energy[i] = 0.0, s, 0.0
+                    continue
+                allxy = np.concatenate([shapely.get_coordinates(g) for g in parts])
+                d2 = np.hypot(allxy[:, 0] - s[0], allxy[:, 1] - s[1])
+                ok[i] = bool(np.all((allxy - d2[:, None] >= lo) & (allxy + d2[:, None] <= hi)))
+                if len(parts) == 1:
+                    main = parts[0]
+                else:
+                    inside = [g for g in parts if g.covers(shapely.Point(s))]
+                    main = inside[0] if inside else max(parts, key=lambda g: g.area)
+                mains.append(_ccw_coords(main))
+                main_idx.append(i)
                 for g in parts:
                     for piece in (_split_by_lines(g, ctx) if ctx.lines else [g]):
                         pieces.append(_ccw_coords(piece))
                         owner.append(i)
-        if mains:
-            main_idx = np.asarray(main_idx)
-            mptr = np.concatenate([[0], np.cumsum([len(x) for x in mains])])
-            mm, cc, ee = polygon_moments_csr(mptr, np.concatenate(mains), origin=seeds[main_idx],
-                                             density=ctx.density)
-            mass[main_idx], cen[main_idx], energy[main_idx] = mm, cc, ee
+            if mains:
+                main_idx = np.asarray(main_idx)
+                mptr = np.concatenate([[0], np.cumsum([len(x) for x in mains])])
+                mm, cc, ee = polygon_moments_csr(mptr, np.concatenate(mains), origin=seeds[main_idx],
+                                                 density=ctx.density)
+                mass[main_idx], cen[main_idx], energy[main_idx] = mm, cc, ee
     if final:
         keep = np.flatnonzero(~near)
         keys = (ptr, V, keep, gid[tri[ft]] if final else None)
@@ -258,6 +344,8 @@ def _run_tile(args):
 class Tessellator:
     """Tiled bounded Voronoi diagram; reusable across Lloyd iterations."""
 
+    halo = 1.5          # halo width, in units of twice the mean seed spacing of the tile
+
     def __init__(self, ctx, per_tile=4000, processes=None):
         self.ctx = ctx
         self.per_tile = per_tile
@@ -278,15 +366,16 @@ class Tessellator:
             if self._pool is None:
                 self._pool = mp.get_context("fork").Pool(nproc, initializer=_init_worker, initargs=(self.ctx,))
             jobs = [j[:5] + (None,) + j[6:] for j in jobs]
-            return self._pool.map(_run_tile, jobs, chunksize=max(1, len(jobs) // (4 * nproc)))
+            return self._pool.map(_run_tile, jobs, chunksize=max(1, len(jobs) // (32 * nproc)))
         return [_run_tile(j) for j in jobs]
 
     def run(self, seeds, helpers, final=False):
         ctx = self.ctx
         n = len(seeds)
         G = np.concatenate([seeds, helpers])
-        gid_all = np.arange(len(G))
-        lo0, hi0 = seeds.min(0), seeds.max(0)
+        # (column by column: a reduction along axis 0 of an (n, 2) array is slow)
+        lo0 = np.array([seeds[:, 0].min(), seeds[:, 1].min()])
+        hi0 = np.array([seeds[:, 0].max(), seeds[:, 1].max()])
         span = np.maximum(hi0 - lo0, 1e-12 * ctx.size)
         ntiles = max(1, int(round(n / self.per_tile)))
         aspect = span[0] / span[1]
@@ -295,45 +384,89 @@ class Tessellator:
         tx = np.minimum((ntx * (seeds[:, 0] - lo0[0]) / span[0]).astype(int), ntx - 1)
         ty = np.minimum((nty * (seeds[:, 1] - lo0[1]) / span[1]).astype(int), nty - 1)
         tile_of = tx * nty + ty
-        order = np.argsort(tile_of, kind="stable")
+        order = np.argsort(tile_of.astype(np.int16) if ntx * nty < 2 ** 15 else tile_of, kind="stable")
         tile_all = np.concatenate([tile_of, np.full(len(helpers), -1)])
         starts = np.searchsorted(tile_of[order], np.arange(ntx * nty + 1))
         far = helpers[-FAR_RING:] if len(helpers) >= FAR_RING else helpers
         far_gid = np.arange(len(G) - len(far), len(G))
-        xorder = np.argsort(G[:, 0], kind="stable")
-        xs = G[xorder, 0]
 
         results = [None] * (ntx * nty)
-        halo_factor = np.full(ntx * nty, 1.5)
-        todo = [t for t in range(ntx * nty) if starts[t + 1] > starts[t]]
+        halo_factor = np.full(ntx * nty, self.halo)
+        ntile = ntx * nty
+        counts = np.diff(starts)
+        todo = [t for t in range(ntile) if counts[t] > 0]
+        # tile boxes, own-seed bounds and mean seed spacing, per tile
+        ti, tj = np.divmod(np.arange(ntile), nty)
+        blo = lo0 + span * np.column_stack([ti / ntx, tj / nty])
+        bhi = lo0 + span * np.column_stack([(ti + 1) / ntx, (tj + 1) / nty])
+        blo[ti == 0, 0] = -np.inf
+        blo[tj == 0, 1] = -np.inf
+        bhi[ti == ntx - 1, 0] = np.inf
+        bhi[tj == nty - 1, 1] = np.inf
+        nz = np.flatnonzero(counts > 0)
+        sorted_seeds = seeds[order]
+        omin = np.zeros((ntile, 2))
+        omax = np.zeros((ntile, 2))
+        if len(nz):
+            omin[nz] = np.minimum.reduceat(sorted_seeds, starts[nz], axis=0)
+            omax[nz] = np.maximum.reduceat(sorted_seeds, starts[nz], axis=0)
+        hloc = np.sqrt(np.prod(span / [ntx, nty]) / np.maximum(counts, 1))
+        cellw = span / [ntx, nty]
+        # generators other than the far ring, bucketed on a grid K times finer than the tiles
+        # (by column, then row): a box of width below a tile cell takes its candidates from a
+        # few runs of consecutive buckets
+        K = int(max(1, min(8, np.sqrt((2 ** 15 - 1) / ntile))))     # int16 keys: a radix sort
+        nbx, nby = ntx * K, nty * K
+        nA = len(G) - len(far)
+        A = G[:nA]
+        bx = np.clip(np.floor(nbx * (A[:, 0] - lo0[0]) / span[0]), 0, nbx - 1).astype(np.int64)
+        by = np.clip(np.floor(nby * (A[:, 1] - lo0[1]) / span[1]), 0, nby - 1).astype(np.int64)
+        bucket = bx * nby + by
+        border = np.argsort(bucket.astype(np.int16) if nbx * nby < 2 ** 15 else bucket, kind="stable")
+        bstarts = np.searchsorted(bucket[border], np.arange(nbx * nby + 1))
+        # bucket-ordered copies: the candidates of a tile are contiguous runs in memory
+        GB = A[border]
+        TB = tile_all[:nA][border]
+        xorder = xs = None
         while todo:
             jobs = []
             for t in todo:
                 own = order[starts[t]:starts[t + 1]]
-                i, j = divmod(t, nty)
-                blo = lo0 + span * np.array([i / ntx, j / nty])
-                bhi = lo0 + span * np.array([(i + 1) / ntx, (j + 1) / nty])
-                if i == ntx - 1:
-                    bhi[0] = np.inf
-                if j == nty - 1:
-                    bhi[1] = np.inf
-                if i == 0:
-                    blo[0] = -np.inf
-                if j == 0:
-                    blo[1] = -np.inf
-                h = np.sqrt(np.prod(span / [ntx, nty]) / max(len(own), 1))
-                w = halo_factor[t] * h * 2.0
-                slo = np.maximum(blo, seeds[own].min(0)) - w
-                shi = np.minimum(bhi, seeds[own].max(0)) + w
-                a, b = np.searchsorted(xs, [slo[0], shi[0]])
-                cand = xorder[a:b]
-                cand = cand[(G[cand, 1] >= slo[1]) & (G[cand, 1] <= shi[1])]
-                halo = cand[(tile_all[cand] != t) & (cand < len(G) - len(far))]
+                w = halo_factor[t] * hloc[t] * 2.0
+                slo = np.maximum(blo[t], omin[t]) - w
+                shi = np.minimum(bhi[t], omax[t]) + w
+                if ntile > 1 and w < 0.9 * cellw.min():
+                    # buckets that meet the box (one bucket of slack against round-off)
+                    c0, c1 = np.clip(np.floor((slo - lo0) / span * [nbx, nby]).astype(np.int64) - 1,
+                                     0, [nbx - 1, nby - 1]), \
+                        np.clip(np.floor((shi - lo0) / span * [nbx, nby]).astype(np.int64) + 1,
+                                0, [nbx - 1, nby - 1])
+                    cols = np.arange(c0[0], c1[0] + 1) * nby
+                    runs = [(bstarts[c + c0[1]], bstarts[c + c1[1] + 1]) for c in cols]
+                    cand = np.concatenate([border[a:b] for a, b in runs])
+                    P = np.concatenate([GB[a:b] for a, b in runs])
+                    inb = (P[:, 0] >= slo[0]) & (P[:, 0] < shi[0]) & (P[:, 1] >= slo[1]) & (P[:, 1] <= shi[1])
+                    inb &= np.concatenate([TB[a:b] for a, b in runs]) != t
+                    halo = cand[inb]
+                    Ph = P[inb]
+                    # in the order of a stable sort by x, as the strip search below gives them
+                    o = np.lexsort((halo, Ph[:, 0]))
+                    halo, Ph = halo[o], Ph[o]
+                else:
+                    if xorder is None:
+                        xorder = np.argsort(G[:, 0], kind="stable")
+                        xs = G[xorder, 0]
+                    a, b = np.searchsorted(xs, [slo[0], shi[0]])
+                    cand = xorder[a:b]
+                    cand = cand[(G[cand, 1] >= slo[1]) & (G[cand, 1] <= shi[1])]
+                    halo = cand[(tile_all[cand] != t) & (cand < len(G) - len(far))]
+                    Ph = G[halo]
                 ids = np.concatenate([own, halo, far_gid])
                 everything = len(halo) + len(own) + len(far_gid) >= len(G)
                 jlo = np.full(2, -np.inf) if everything else slo
                 jhi = np.full(2, np.inf) if everything else shi
-                jobs.append((G[ids], gid_all[ids], len(own), jlo, jhi, ctx, final))
+                Pt = np.concatenate([sorted_seeds[starts[t]:starts[t + 1]], Ph, far])
+                jobs.append((Pt, ids, len(own), jlo, jhi, ctx, final))
             outs = self._map(jobs)
             again = []
             for t, out in zip(todo, outs):
@@ -390,21 +523,44 @@ def shadows(shape, segs):
     return out
 
 
-def reflect(seeds, segs, shape_contains, spacing, alpha=1.5, shadow=None):
+def reflect(seeds, segs, shape_contains, spacing, alpha=1.5, shadow=None, max_spacing=None):
     """PolyMesher reflections of the seeds close to a boundary segment, kept outside and away
-    from the segment's shadow."""
+    from the segment's shadow.
+
+    spacing: local seed spacing, an array (one per seed), a number, or a function of points;
+    max_spacing (an upper bound of it) lets only the seeds within reach be measured."""
     out = []
+    fn = spacing if callable(spacing) else None
+    if fn is not None and max_spacing is None:
+        spacing = fn(seeds)
+        fn = None
     for k, (a, b) in enumerate(segs):
         ab = b - a
         L2 = ab @ ab
         t = ((seeds - a) @ ab) / L2
-        proj = a + t[:, None] * ab
-        d = np.hypot(*(seeds - proj).T)
-        m = (t > -0.05) & (t < 1.05) & (d < alpha * spacing) & (d > 0)
+        if max_spacing is not None:
+            # the distance to the segment's line is |cross| / |ab|: a superset of the seeds
+            # within alpha * spacing, then the same test as below on those
+            cross = (seeds[:, 0] - a[0]) * ab[1] - (seeds[:, 1] - a[1]) * ab[0]
+            idx = np.flatnonzero((t > -0.05) & (t < 1.05)
+                                 & (np.abs(cross) <= alpha * max_spacing * np.sqrt(L2) * (1 + 1e-6)))
+        else:
+            idx = np.arange(len(seeds))
+        S = seeds[idx]
+        tk = t[idx]
+        proj = a + tk[:, None] * ab
+        d = np.hypot(*(S - proj).T)
+        if fn is not None:
+            sp_all = fn(S)
+        elif np.ndim(spacing):
+            sp_all = spacing[idx]
+        else:
+            sp_all = spacing
+        m = (tk > -0.05) & (tk < 1.05) & (d < alpha * sp_all) & (d > 0)
         if m.any():
-            R = 2.0 * proj[m] - seeds[m]
+            R = 2.0 * proj[m] - S[m]
             if shadow is not None and shadow[k] is not None:
-                sp = spacing[m] if np.ndim(spacing) else spacing
+                sp = sp_all[m] if np.ndim(sp_all) else sp_all
                 R = R[shapely.distance(shapely.points(R), shadow[k]) > 3.0 * sp]
             out.append(R)
     if not out:
