@@ -38,8 +38,8 @@ contains
    !> elastic_matrix, `thick` the thickness.  info: 0 ok, 1 non-positive area,
    !> 2 FEM requested for an element that is not a 3- or 4-node element,
    !> 3 non-positive Jacobian at a Gauss point (FEM quad); ke = 0 when info /= 0.
-   pure subroutine element_stiffness(etype, form, xy, d, thick, ke, work, info)
-      integer, intent(in) :: etype, form
+   pure subroutine element_stiffness(form, xy, d, thick, ke, work, info)
+      integer, intent(in) :: form
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick
       real(wp), intent(out) :: ke(:, :)
       real(wp), intent(inout) :: work(:)
@@ -63,8 +63,8 @@ contains
    !> D times the projected constant strain; FEM quad: mean of the 4 Gauss-point
    !> stresses; CST: its constant stress.  Elements that element_stiffness
    !> rejects give zero.
-   pure subroutine element_stress(etype, form, xy, d, ue, work, sig)
-      integer, intent(in) :: etype, form
+   pure subroutine element_stress(form, xy, d, ue, work, sig)
+      integer, intent(in) :: form
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
       real(wp), intent(inout) :: work(:)
       real(wp), intent(out) :: sig(3)
@@ -85,8 +85,8 @@ contains
    !> node i per unit thickness, so a constant body force b gives nodal forces
    !> b*thick*w(i); sum(w) is the area.  VEM: integral of Pi phi_i (computable
    !> from boundary data); FEM: of N_i.
-   pure subroutine element_load_weights(etype, form, xy, work, w)
-      integer, intent(in) :: etype, form
+   pure subroutine element_load_weights(form, xy, work, w)
+      integer, intent(in) :: form
       real(wp), intent(in) :: xy(:, :)
       real(wp), intent(inout) :: work(:)
       real(wp), intent(out) :: w(:)

@@ -45,7 +45,7 @@ contains
          associate (mat => model%materials(model%elem_mat(e)))
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
          end associate
-         call element_stiffness(model%elem_type(e), model%elem_form(e), xy(:, :n), d, &
+         call element_stiffness(model%elem_form(e), xy(:, :n), d, &
                                 model%elem_thick(e), ke(:2*n, :2*n), work, info)
          if (info /= 0) then
             nerr = nerr + 1
@@ -94,7 +94,7 @@ contains
          select case (dloads(k)%kind)
          case (dload_grav)
             xy(:, :n) = model%x(:, model%elem_conn(first:first + n - 1))
-            call element_load_weights(model%elem_type(e), model%elem_form(e), xy(:, :n), work, w(:n))
+            call element_load_weights(model%elem_form(e), xy(:, :n), work, w(:n))
             scale = model%materials(model%elem_mat(e))%density*dloads(k)%magnitude*model%elem_thick(e)
             do i = 1, n
                node = model%elem_conn(first + i - 1)
@@ -137,7 +137,7 @@ contains
       s0 = 0.0_wp
       s1 = 1.0_wp
       ! keep the part of [0,1] where p*sign(magnitude) >= 0, i.e. the wet side
-      if (beta /= 0.0_wp) then
+      if (abs(beta) > 0.0_wp) then      ! exactly zero only on a horizontal side
          if (sign(1.0_wp, load%magnitude)*beta > 0.0_wp) then
             s0 = max(0.0_wp, min(1.0_wp, -alpha/beta))
          else
@@ -180,7 +180,7 @@ contains
          end do
          associate (mat => model%materials(model%elem_mat(e)))
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
-            call element_stress(model%elem_type(e), model%elem_form(e), xy(:, :n), d, ue(:2*n), work, sig)
+            call element_stress(model%elem_form(e), xy(:, :n), d, ue(:2*n), work, sig)
             s_elem(:, e) = [sig(1), sig(2), out_of_plane_stress(mat%poisson, model%elem_plane(e), sig(1), sig(2)), sig(3)]
          end associate
       end do

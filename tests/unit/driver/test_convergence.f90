@@ -119,7 +119,7 @@ contains
          n = ptr(e + 1) - ptr(e)
          xy(:, :n) = x(:, conn(ptr(e):ptr(e + 1) - 1))
          call polygon_centroid(xy(:, :n), c)
-         call element_load_weights(m%elem_type(e), form, xy(:, :n), work, w(:n))
+         call element_load_weights(form, xy(:, :n), work, w(:n))
          do i = 1, n
             node = conn(ptr(e) + i - 1)
             st%force(2*node - 1:2*node) = st%force(2*node - 1:2*node) + w(i)*body_force(c)
@@ -147,7 +147,7 @@ contains
          do i = 1, n
             el2 = el2 + area/n*sum((ue(2*i - 1:2*i) - exact_u(xy(:, i)))**2)
          end do
-         call element_stress(m%elem_type(e), form, xy(:, :n), d, ue(:2*n), work, sig)
+         call element_stress(form, xy(:, :n), d, ue(:2*n), work, sig)
          ! energy norm of eps(u) - eps_h over the cell: signed fan of triangles from
          ! the centroid (an exact decomposition of any simple polygon, convex or
          ! not) with the 3-point edge-midpoint rule (degree 2) on each triangle

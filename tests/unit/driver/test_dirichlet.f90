@@ -1,7 +1,7 @@
 !> Prescribed values moved to the right-hand side give the same solution as
 !> solving the reduced system by hand.
 program test_dirichlet
-   use vemcontact_kinds, only: wp, ip, i8
+   use vemcontact_kinds, only: wp, i8
    use vemcontact_testing, only: checker_t
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_driver_dirichlet, only: apply_dirichlet

@@ -1,6 +1,6 @@
 !> Boundary conditions and loads accumulate over steps with CalculiX's OP meaning.
 program test_load_state
-   use vemcontact_kinds, only: wp, ip
+   use vemcontact_kinds, only: wp
    use vemcontact_testing, only: checker_t
    use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state

@@ -13,7 +13,7 @@ program test_pattern
    integer(ip), parameter :: adj(10) = [2, 3, 1, 3, 4, 1, 2, 4, 2, 3]
    integer(ip), parameter :: e1(3) = [1, 2, 3], e2(3) = [2, 4, 3]
    real(wp) :: k1(6, 6), k2(6, 6), dense(8, 8), r(6, 6)
-   integer :: i, j
+   integer :: j
    integer(i8) :: k
    logical :: ok
 

@@ -2,8 +2,7 @@
 !> the VEM stabilisation against the bilinear element on a square.
 program test_element_fem_values
    use vemcontact_kinds, only: wp
-   use vemcontact_model, only: plane_strain, plane_stress, etype_polygon, etype_quad4, &
-      etype_tri3, form_vem, form_fem
+   use vemcontact_model, only: plane_strain, plane_stress, form_vem, form_fem
    use vemcontact_material_elastic, only: elastic_matrix
    use vemcontact_element, only: element_workspace_size, element_stiffness
    use vemcontact_testing, only: checker_t
@@ -42,7 +41,7 @@ program test_element_fem_values
    !   K(1,7) = int N1x N4x + N1y N4y / 2    = 1/6 - (1/3)/2      =  0
    !   K(1,8) = int N1y N4x / 2              = (1/4)/2            =  1/8
    call elastic_matrix(1.0_wp, 0.0_wp, plane_stress, d)
-   call element_stiffness(etype_quad4, form_fem, unit_square, d, 1.0_wp, ke, work, info)
+   call element_stiffness(form_fem, unit_square, d, 1.0_wp, ke, work, info)
    call t%equal(info, 0, 'unit square info')
    call t%close(ke(1, 1), 0.5_wp, rtol, 'square nu=0 K(1,1) = 1/2')
    call t%close(ke(1, 2), 0.125_wp, rtol, 'square nu=0 K(1,2) = 1/8')
@@ -68,10 +67,10 @@ program test_element_fem_values
       end do
    end do
    call elastic_matrix(e, nu, plane_stress, d)
-   call element_stiffness(etype_quad4, form_fem, unit_square, d, th, ke, work, info)
+   call element_stiffness(form_fem, unit_square, d, th, ke, work, info)
    call t%check(maxval(abs(ke - kref)) <= rtol*10*maxval(abs(kref)), 'square nu=0.3: all 64 entries')
    ! the same square translated far away: same matrix (Jacobian built from differences)
-   call element_stiffness(etype_quad4, form_fem, unit_square + 1.0e3_wp, d, th, ke, work, info)
+   call element_stiffness(form_fem, unit_square + 1.0e3_wp, d, th, ke, work, info)
    call t%check(maxval(abs(ke - kref)) <= 1.0e-12_wp*maxval(abs(kref)), 'translated square')
 
    ! Rectangle a x b, E = 1, nu = 0, t = 1, plane stress:
@@ -80,7 +79,7 @@ program test_element_fem_values
    a = 3.0_wp
    b = 0.5_wp
    call elastic_matrix(1.0_wp, 0.0_wp, plane_stress, d)
-   call element_stiffness(etype_quad4, form_fem, reshape([0.0_wp, 0.0_wp, a, 0.0_wp, a, b, 0.0_wp, b], &
+   call element_stiffness(form_fem, reshape([0.0_wp, 0.0_wp, a, 0.0_wp, a, b, 0.0_wp, b], &
                                                          [2, 4]), d, 1.0_wp, ke, work, info)
    call t%close(ke(1, 1), b/(3*a) + a/(6*b), rtol, 'rectangle K(1,1)')
    call t%close(ke(1, 2), 0.125_wp, rtol, 'rectangle K(1,2)')
@@ -95,7 +94,7 @@ program test_element_fem_values
    ! K(I,J) = A b_I^T diag(1,1,1/2) b_J:
    !   K(1,1) = 3/4   K(1,2) = 1/4   K(1,3) = -1/2   K(1,4) = -1/4
    !   K(1,5) = -1/4  K(1,6) = 0     K(2,3) = 0      K(2,4) = -1/4
-   call element_stiffness(etype_tri3, form_fem, reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], &
+   call element_stiffness(form_fem, reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], &
                                                         [2, 3]), d, 1.0_wp, k6, work, info)
    call t%close(k6(1, 1), 0.75_wp, rtol, 'CST K(1,1)')
    call t%close(k6(1, 3), -0.5_wp, rtol, 'CST K(1,3)')
@@ -113,8 +112,8 @@ program test_element_fem_values
    hg = [1.0_wp, 0.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, -1.0_wp, 0.0_wp]
    do i = 1, 2
       call elastic_matrix(e, nu, merge(plane_strain, plane_stress, i == 1), d)
-      call element_stiffness(etype_polygon, form_vem, unit_square, d, th, kv, work, info)
-      call element_stiffness(etype_quad4, form_fem, unit_square, d, th, ke, work, info)
+      call element_stiffness(form_vem, unit_square, d, th, kv, work, info)
+      call element_stiffness(form_fem, unit_square, d, th, ke, work, info)
       evem = dot_product(hg, matmul(kv, hg))
       eq4 = dot_product(hg, matmul(ke, hg))
       call t%close(evem, th*(d(1, 1) + d(3, 3)), 1.0e-13_wp, 'VEM hourglass energy = t (D11 + D33)')

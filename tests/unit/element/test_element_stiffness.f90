@@ -5,8 +5,7 @@
 !> invariance of the VEM stiffness under translation, scaling and rotation.
 program test_element_stiffness
    use vemcontact_kinds, only: wp, ip, i8
-   use vemcontact_model, only: plane_strain, plane_stress, etype_polygon, etype_quad4, &
-      etype_tri3, form_vem, form_fem
+   use vemcontact_model, only: plane_strain, plane_stress, form_vem, form_fem
    use vemcontact_material_elastic, only: elastic_matrix
    use vemcontact_element, only: element_workspace_size, element_stiffness, element_stress
    use vemcontact_element_geometry, only: polygon_is_simple, polygon_is_convex, polygon_diameter
@@ -61,7 +60,7 @@ program test_element_stiffness
          call random_convex_polygon(n, state, xy)
          write (label, '(a,i0,a,i0)') 'VEM convex n=', n, ' #', rep
          call t%check(polygon_is_convex(xy), trim(label)//' generator gives convex')
-         call check_all(etype_polygon, form_vem, xy, trim(label))
+         call check_all(form_vem, xy, trim(label))
       end do
    end do
    ! star-shaped non-convex polygons
@@ -71,7 +70,7 @@ program test_element_stiffness
          write (label, '(a,i0,a,i0)') 'VEM star n=', n, ' #', rep
          call t%check(polygon_is_simple(xy), trim(label)//' simple')
          if (n >= 6) call t%check(.not. polygon_is_convex(xy), trim(label)//' non-convex')
-         call check_all(etype_polygon, form_vem, xy, trim(label))
+         call check_all(form_vem, xy, trim(label))
       end do
    end do
    ! L and U shapes, exact and jittered
@@ -79,43 +78,43 @@ program test_element_stiffness
       xy = reshape([0.0_wp, 0.0_wp, 2.0_wp, 0.0_wp, 2.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, &
                     1.0_wp, 2.0_wp, 0.0_wp, 2.0_wp], [2, 6])
       call jitter(xy, 0.05_wp*rep)
-      call check_all(etype_polygon, form_vem, xy, 'VEM L-shape')
+      call check_all(form_vem, xy, 'VEM L-shape')
       xy = reshape([0.0_wp, 0.0_wp, 3.0_wp, 0.0_wp, 3.0_wp, 2.0_wp, 2.0_wp, 2.0_wp, &
                     2.0_wp, 0.5_wp, 1.0_wp, 0.5_wp, 1.0_wp, 2.0_wp, 0.0_wp, 2.0_wp], [2, 8])
       call jitter(xy, 0.05_wp*rep)
-      call check_all(etype_polygon, form_vem, xy, 'VEM U-shape')
+      call check_all(form_vem, xy, 'VEM U-shape')
    end do
    ! strongly distorted quads
    xy = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.6_wp, 0.1_wp, 0.4_wp, 0.1_wp], [2, 4])
-   call check_all(etype_polygon, form_vem, xy, 'VEM flat trapezoid')
-   call check_all(etype_quad4, form_fem, xy, 'Q4 flat trapezoid')
+   call check_all(form_vem, xy, 'VEM flat trapezoid')
+   call check_all(form_fem, xy, 'Q4 flat trapezoid')
    xy = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.5_wp, 0.49_wp], [2, 4])
-   call check_all(etype_polygon, form_vem, xy, 'VEM dart quad')
+   call check_all(form_vem, xy, 'VEM dart quad')
    xy = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.5_wp, 0.51_wp], [2, 4])
-   call check_all(etype_polygon, form_vem, xy, 'VEM 179-degree quad')
-   call check_all(etype_quad4, form_fem, xy, 'Q4 179-degree quad')
+   call check_all(form_vem, xy, 'VEM 179-degree quad')
+   call check_all(form_fem, xy, 'Q4 179-degree quad')
    xy = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 3.0_wp, 1.0_wp, 2.0_wp, 1.0_wp], [2, 4])
-   call check_all(etype_polygon, form_vem, xy, 'VEM skewed parallelogram')
-   call check_all(etype_quad4, form_fem, xy, 'Q4 skewed parallelogram')
+   call check_all(form_vem, xy, 'VEM skewed parallelogram')
+   call check_all(form_fem, xy, 'Q4 skewed parallelogram')
    xy = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 0.01_wp, 0.0_wp, 0.01_wp], [2, 4])
-   call check_all(etype_polygon, form_vem, xy, 'VEM aspect 100')
-   call check_all(etype_quad4, form_fem, xy, 'Q4 aspect 100')
+   call check_all(form_vem, xy, 'VEM aspect 100')
+   call check_all(form_fem, xy, 'Q4 aspect 100')
    xy = reshape([0.0_wp, 0.0_wp, 2.0_wp, 0.3_wp, 1.2_wp, 1.5_wp, -0.5_wp, 0.8_wp], [2, 4])
-   call check_all(etype_polygon, form_vem, xy, 'VEM general quad')
-   call check_all(etype_quad4, form_fem, xy, 'Q4 general quad')
+   call check_all(form_vem, xy, 'VEM general quad')
+   call check_all(form_fem, xy, 'Q4 general quad')
    ! collinear (hanging) vertices
    xy = reshape([0.0_wp, 0.0_wp, 0.5_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 0.5_wp, &
                  1.0_wp, 1.0_wp, 0.5_wp, 1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.5_wp], [2, 8])
-   call check_all(etype_polygon, form_vem, xy, 'VEM square with 4 midpoints')
+   call check_all(form_vem, xy, 'VEM square with 4 midpoints')
    xy = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 0.5_wp, 1.0_wp, 1.0_wp, &
                  0.0_wp, 1.0_wp], [2, 5])
-   call check_all(etype_polygon, form_vem, xy, 'VEM square with 1 midpoint')
+   call check_all(form_vem, xy, 'VEM square with 1 midpoint')
    xy = reshape([0.0_wp, 0.0_wp, 0.2_wp, 0.0_wp, 0.7_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
                  0.3_wp, 0.8_wp], [2, 5])
-   call check_all(etype_polygon, form_vem, xy, 'VEM triangle with 2 collinear')
+   call check_all(form_vem, xy, 'VEM triangle with 2 collinear')
    xy = reshape([0.0_wp, 0.0_wp, 0.1_wp, 0.0_wp, 0.15_wp, 0.0_wp, 1.5_wp, 0.0_wp, &
                  2.0_wp, 0.0_wp, 2.0_wp, 1.0_wp, 0.0_wp, 1.0_wp], [2, 7])
-   call check_all(etype_polygon, form_vem, xy, 'VEM rectangle with 3 collinear')
+   call check_all(form_vem, xy, 'VEM rectangle with 3 collinear')
    ! 20 crowded collinear vertices on one side of a square (negative load weights)
    deallocate (xy)
    allocate (xy(2, 24))
@@ -124,38 +123,38 @@ program test_element_stiffness
       xy(:, 1 + n) = [0.005_wp*n, 0.0_wp]
    end do
    xy(:, 22:24) = reshape([1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp], [2, 3])
-   call check_all(etype_polygon, form_vem, xy, 'VEM square with 20 crowded collinear')
+   call check_all(form_vem, xy, 'VEM square with 20 crowded collinear')
    ! sides of 1e-6 of the diameter
    xy = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp - 1.0e-6_wp, &
                  1.0_wp - 1.0e-6_wp, 1.0_wp, 0.0_wp, 1.0_wp], [2, 5])
-   call check_all(etype_polygon, form_vem, xy, 'VEM square with 1e-6 corner cut')
+   call check_all(form_vem, xy, 'VEM square with 1e-6 corner cut')
    xy = reshape([1.0_wp, 0.0_wp, 0.5_wp, 0.8660254_wp, -0.5_wp, 0.8660254_wp, -1.0_wp, 0.0_wp, &
                  -0.5_wp, -0.8660254_wp, 0.5_wp, -0.8660254_wp, 0.5_wp + 2.0e-6_wp, -0.8660254_wp], &
                 [2, 7])
-   call check_all(etype_polygon, form_vem, xy, 'VEM hexagon with 1e-6 side')
+   call check_all(form_vem, xy, 'VEM hexagon with 1e-6 side')
    xy = reshape([0.0_wp, 0.0_wp, 2.0_wp, 0.0_wp, 2.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, &
                  1.0_wp, 1.0_wp + 2.0e-6_wp, 1.0_wp - 1.0e-6_wp, 1.0_wp + 2.0e-6_wp, &
                  1.0_wp - 1.0e-6_wp, 2.0_wp, 0.0_wp, 2.0_wp], [2, 8])
    call t%check(polygon_is_simple(xy), 'L with 1e-6 step is simple')
-   call check_all(etype_polygon, form_vem, xy, 'VEM L-shape with 1e-6 step')
+   call check_all(form_vem, xy, 'VEM L-shape with 1e-6 step')
 
    ! every cell of the test meshes other tests run on
    call dual_polymesh(4, 0.3_wp, 3, xm, ptr, conn, median=.true.)
    do e = 1, size(ptr) - 1
-      call check_all(etype_polygon, form_vem, xm(:, conn(ptr(e):ptr(e + 1) - 1)), 'VEM median-dual cell')
+      call check_all(form_vem, xm(:, conn(ptr(e):ptr(e + 1) - 1)), 'VEM median-dual cell')
    end do
    call hanging_quad_grid(3, 3, xm, ptr, conn)
    do e = 1, size(ptr) - 1
-      call check_all(etype_polygon, form_vem, xm(:, conn(ptr(e):ptr(e + 1) - 1)), 'VEM hanging-grid cell')
+      call check_all(form_vem, xm(:, conn(ptr(e):ptr(e + 1) - 1)), 'VEM hanging-grid cell')
    end do
 
    ! 2. FEM quads (convex, non-degenerate) and triangles
    do rep = 1, 20
       call random_convex_polygon(4, state, xy)
-      call check_all(etype_quad4, form_fem, xy, 'Q4 random convex')
-      call check_all(etype_polygon, form_vem, xy, 'VEM random convex quad')
+      call check_all(form_fem, xy, 'Q4 random convex')
+      call check_all(form_vem, xy, 'VEM random convex quad')
       call random_convex_polygon(3, state, xy)
-      call check_all(etype_tri3, form_fem, xy, 'CST random')
+      call check_all(form_fem, xy, 'CST random')
       call check_vem_equals_cst(xy)
    end do
 
@@ -185,21 +184,21 @@ contains
    end subroutine jitter
 
    !> All checks for one shape, for plane strain (nu 0.3 and 0.49) and plane stress.
-   subroutine check_all(etype, form, p, what)
-      integer, intent(in) :: etype, form
+   subroutine check_all(form, p, what)
+      integer, intent(in) :: form
       real(wp), intent(in) :: p(:, :)
       character(len=*), intent(in) :: what
       real(wp) :: d(3, 3)
       call elastic_matrix(young, 0.3_wp, plane_strain, d)
-      call check_one(etype, form, p, d, what//' plane strain')
+      call check_one(form, p, d, what//' plane strain')
       call elastic_matrix(young, 0.49_wp, plane_strain, d)
-      call check_one(etype, form, p, d, what//' plane strain nu=0.49')
+      call check_one(form, p, d, what//' plane strain nu=0.49')
       call elastic_matrix(young, 0.3_wp, plane_stress, d)
-      call check_one(etype, form, p, d, what//' plane stress')
+      call check_one(form, p, d, what//' plane stress')
    end subroutine check_all
 
-   subroutine check_one(etype, form, p, d, what)
-      integer, intent(in) :: etype, form
+   subroutine check_one(form, p, d, what)
+      integer, intent(in) :: form
       real(wp), intent(in) :: p(:, :), d(3, 3)
       character(len=*), intent(in) :: what
       real(wp), allocatable :: ke(:, :), work(:), a(:, :), lam(:), lwork(:), u(:), f(:)
@@ -210,7 +209,7 @@ contains
       m = 2*n
       ncount = ncount + 1
       allocate (ke(m, m), work(element_workspace_size(n)), a(m, m), lam(m), lwork(64*m), u(m), f(m))
-      call element_stiffness(etype, form, p, d, thick, ke, work, info)
+      call element_stiffness(form, p, d, thick, ke, work, info)
       call t%equal(info, 0, what//': info')
       if (info /= 0) return
       kmax = maxval(abs(ke))
@@ -273,7 +272,7 @@ contains
          end do
          call t%check(maxval(abs(matmul(ke, u) - f)) <= tol_cons*kmax*maxval(abs(u)), &
                       what//': K u_lin = consistent nodal forces')
-         call element_stress(etype, form, p, d, u, work, sig_h)
+         call element_stress(form, p, d, u, work, sig_h)
          call t%check(maxval(abs(sig_h - sig)) <= tol_cons*maxval(abs(d))*maxval(abs(g)), &
                       what//': stress of a linear field')
       end do
@@ -286,8 +285,8 @@ contains
       real(wp) :: d(3, 3), kv(6, 6), kf(6, 6), work(element_workspace_size(3))
       integer :: info
       call elastic_matrix(young, 0.3_wp, plane_strain, d)
-      call element_stiffness(etype_polygon, form_vem, p, d, thick, kv, work, info)
-      call element_stiffness(etype_tri3, form_fem, p, d, thick, kf, work, info)
+      call element_stiffness(form_vem, p, d, thick, kv, work, info)
+      call element_stiffness(form_fem, p, d, thick, kf, work, info)
       ! both are rounding-level (~1e-15) away from the exact matrix
       call t%check(maxval(abs(kv - kf)) <= 1.0e-13_wp*maxval(abs(kf)), 'VEM on a triangle = CST')
    end subroutine check_vem_equals_cst
@@ -310,16 +309,16 @@ contains
          end if
          if (allocated(k0)) deallocate (k0, k1, q, work)
          allocate (k0(2*n, 2*n), k1(2*n, 2*n), q(2*n, 2*n), work(element_workspace_size(n)))
-         call element_stiffness(etype_polygon, form_vem, p, d, thick, k0, work, info)
+         call element_stiffness(form_vem, p, d, thick, k0, work, info)
          p2 = p
          p2(1, :) = p2(1, :) + 37.5_wp
          p2(2, :) = p2(2, :) - 12.25_wp
-         call element_stiffness(etype_polygon, form_vem, p2, d, thick, k1, work, info)
+         call element_stiffness(form_vem, p2, d, thick, k1, work, info)
          call t%check(maxval(abs(k1 - k0)) <= 1.0e-12_wp*maxval(abs(k0)), 'VEM translation invariance')
          do ks = 1, 2
             s = merge(1.0e3_wp, 1.0e-3_wp, ks == 1)
             p2 = s*p
-            call element_stiffness(etype_polygon, form_vem, p2, d, thick, k1, work, info)
+            call element_stiffness(form_vem, p2, d, thick, k1, work, info)
             call t%check(maxval(abs(k1 - k0)) <= 1.0e-12_wp*maxval(abs(k0)), 'VEM scaling invariance')
          end do
          rot = reshape([cos(0.7_wp), sin(0.7_wp), -sin(0.7_wp), cos(0.7_wp)], [2, 2])
@@ -328,11 +327,11 @@ contains
          do j = 1, n
             q(2*j - 1:2*j, 2*j - 1:2*j) = rot
          end do
-         call element_stiffness(etype_polygon, form_vem, p2, d, thick, k1, work, info)
+         call element_stiffness(form_vem, p2, d, thick, k1, work, info)
          call t%check(maxval(abs(k1 - matmul(q, matmul(k0, transpose(q))))) <= 1.0e-12_wp*maxval(abs(k0)), &
                       'VEM rotation equivariance')
          ! thickness and Young's modulus enter linearly, consistency and stabilisation alike
-         call element_stiffness(etype_polygon, form_vem, p, 3.0_wp*d, 2.0_wp*thick, k1, work, info)
+         call element_stiffness(form_vem, p, 3.0_wp*d, 2.0_wp*thick, k1, work, info)
          call t%check(maxval(abs(k1 - 6.0_wp*k0)) <= 1.0e-13_wp*maxval(abs(k1)), 'VEM linear in E and t')
          call t%check(polygon_diameter(p) > 0.0_wp, 'diameter')
       end do
@@ -345,19 +344,19 @@ contains
       call elastic_matrix(young, 0.3_wp, plane_stress, d)
       ! clockwise square: non-positive area for every formulation
       p = reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, 0.0_wp], [2, 4])
-      call element_stiffness(etype_polygon, form_vem, p, d, thick, k8, work, info)
+      call element_stiffness(form_vem, p, d, thick, k8, work, info)
       call t%equal(info, 1, 'clockwise VEM: info 1')
-      call element_stiffness(etype_quad4, form_fem, p, d, thick, k8, work, info)
+      call element_stiffness(form_fem, p, d, thick, k8, work, info)
       call t%equal(info, 1, 'clockwise Q4: info 1')
       ! dart: positive area but folded isoparametric map
       p = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.5_wp, 0.2_wp], [2, 4])
-      call element_stiffness(etype_quad4, form_fem, p, d, thick, k8, work, info)
+      call element_stiffness(form_fem, p, d, thick, k8, work, info)
       call t%equal(info, 3, 'dart Q4: info 3')
-      call element_stiffness(etype_quad4, form_vem, p, d, thick, k8, work, info)
+      call element_stiffness(form_vem, p, d, thick, k8, work, info)
       call t%equal(info, 0, 'dart as VEM: info 0')
       ! FEM on a pentagon
       p = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.5_wp, 0.5_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp], [2, 5])
-      call element_stiffness(etype_polygon, form_fem, p, d, thick, k10, work, info)
+      call element_stiffness(form_fem, p, d, thick, k10, work, info)
       call t%equal(info, 2, 'FEM pentagon: info 2')
       call t%check(.not. any(abs(k10) > 0.0_wp), 'rejected element has ke = 0')
    end subroutine check_info_codes
