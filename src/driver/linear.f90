@@ -171,7 +171,7 @@ contains
       if (self%refactorized) then
          call check_supports(model, self%part, self%nparts, fixed, error)
          if (allocated(error)) return
-         self%kb = self%k
+         call copy_values(self%k, self%kb)
          call apply_dirichlet(self%kb, fixed, st%prescribed, f)
          t0 = wall_time()
          call self%solver%factorize(self%kb, error)
