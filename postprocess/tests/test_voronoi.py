@@ -176,3 +176,21 @@ def test_tiled_mesh_is_exact_and_the_same_with_one_or_two_processes():
     assert_valid_cells(m1)
     assert_conforming(m1, shapely.Polygon(STAR).exterior, [pl])
     _joint_checks(m1, pl, [pl[0], pl[-1]])
+
+
+def test_triangle_and_qhull_give_the_same_cells():
+    # The Delaunay library is an implementation detail: with uniform density the Lloyd
+    # energies (sums over all cells) agree to rounding (1e-12 relative allows for the
+    # different summation order of the few cocircular quadruples), and both meshes are exact.
+    pl = np.array([[0.5, 0.5], [1.5, 0.9], [2.5, 0.6]])
+    ms = [voronoi_group([VBody("B", STAR, 400)], [Joint("J", pl)], seed=4, lloyd=10, processes=1,
+                        delaunay=b) for b in ("qhull", "triangle")]
+    e0, e1 = (np.asarray(m.info["lloyd_energy"]) for m in ms)
+    assert len(e0) == len(e1) and np.allclose(e0, e1, rtol=1e-12, atol=0)
+    exact = shapely.Polygon(STAR).area
+    for m in ms:
+        assert m.ncell == ms[0].ncell
+        assert abs(m.cell_areas().sum() - exact) <= 1e-12 * exact
+        assert_valid_cells(m)
+        assert_conforming(m, shapely.Polygon(STAR).exterior, [pl])
+        _joint_checks(m, pl, [pl[0], pl[-1]])

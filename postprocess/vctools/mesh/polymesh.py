@@ -87,8 +87,13 @@ def _sample(rng, poly, n, density, shape_contains):
     return np.concatenate(out)[:n]
 
 
-def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=None, verbose=False):
-    """Conforming Voronoi mesh of bonded bodies (one region) with joints split open."""
+def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=None, verbose=False,
+                  delaunay=None):
+    """Conforming Voronoi mesh of bonded bodies (one region) with joints split open.
+
+    delaunay: 'triangle' or 'qhull' (None: Triangle when installed); both give the same mesh
+    up to the last bits where generators are cocircular.
+    """
     names = [b.name for b in bodies]
     shapes = []
     for b in bodies:
@@ -155,6 +160,7 @@ def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=
 
     density = Density([b.polygon for b in bodies], [b.cells for b in bodies], [b.grading for b in bodies])
     ctx = Context(dom_shape, segs, lines, tips, size, density)
+    ctx.backend = delaunay
     rng = np.random.default_rng(seed)
 
     def contains(P):
