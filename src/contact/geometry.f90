@@ -15,7 +15,7 @@ module vemcontact_contact_geometry
    private
 
    public :: project_point_segment, relative_map, contact_force, contact_stiffness
-   public :: contact_energy, contact_pressure, segment_is_degenerate
+   public :: contact_energy, contact_pressure, segment_is_degenerate, length2
 
    !> project_point_segment status: a proper segment
    integer, parameter, public :: seg_ok = 0
@@ -34,7 +34,7 @@ contains
       real(wp), intent(in) :: xa(2), xb(2)
       real(wp) :: scale, l
       scale = max(maxval(abs(xa)), maxval(abs(xb)))
-      l = norm2(xb - xa)
+      l = length2(xb - xa)
       deg = l <= degenerate_rel*scale .or. .not. (l > 0.0_wp)
    end function segment_is_degenerate
 
@@ -55,21 +55,31 @@ contains
          status = seg_degenerate
          xi = 0.0_wp
          normal = 0.0_wp
-         dist = norm2(xs - xa)
+         dist = length2(xs - xa)
          gap = dist
          return
       end if
       status = seg_ok
       t = xb - xa
-      l = norm2(t)
+      l = length2(t)
       d = xs - xa
-      xi = dot_product(d, t)/(l*l)
+      ! with the unit tangent rather than t.t / l**2: no square of a length, which
+      ! would underflow or overflow for coordinates beyond 1e-154 or 1e154
+      xi = dot_product(d, t/l)/l
       normal = [t(2), -t(1)]/l
       ! n.t = 0, so n.(xs - x_xi) = n.(xs - xa) for any xi: no cancellation from xi
       gap = dot_product(normal, d)
       xc = min(max(xi, 0.0_wp), 1.0_wp)
-      dist = norm2(d - xc*t)
+      dist = length2(d - xc*t)
    end subroutine project_point_segment
+
+   !> Euclidean length of a 2-vector without under- or overflow of the squares
+   !> (gfortran's norm2 returns 0 for (1e-200, 0)): lengths of meshes at any scale
+   !> that the coordinates can represent.
+   pure real(wp) function length2(v) result(l)
+      real(wp), intent(in) :: v(2)
+      l = hypot(v(1), v(2))
+   end function length2
 
    !> A(xi) = [I2, -(1-xi) I2, -xi I2]: u_s - u_xi = A [u_s; u_a; u_b] (dof order
    !> s_x, s_y, a_x, a_y, b_x, b_y).

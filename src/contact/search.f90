@@ -18,7 +18,7 @@
 module vemcontact_contact_search
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_internal
-   use vemcontact_contact_geometry, only: project_point_segment, seg_ok
+   use vemcontact_contact_geometry, only: project_point_segment, seg_ok, length2
    implicit none
    private
 
@@ -100,7 +100,7 @@ contains
                call fatal_error(error, 'build_segment_grid: coordinates not finite', err_internal)
                return
             end if
-            len(k) = norm2(xb - xa)
+            len(k) = length2(xb - xa)
             lo = min(lo, xa, xb)
             hi = max(hi, xa, xb)
          end associate
@@ -239,7 +239,7 @@ contains
          associate (xa => x(:, seg(1, j)), xb => x(:, seg(2, j)))
             call project_point_segment(p, xa, xb, xij, gj, nj, dj, st)
             if (st /= seg_ok) cycle
-            lj = norm2(xb - xa)
+            lj = length2(xb - xa)
             sj = alignment(p, xa, xb, xij, nj)
          end associate
          if (iseg == 0) then
@@ -519,7 +519,7 @@ contains
       real(wp) :: c(2), d(2), dn
       c = xa + min(max(xi, 0.0_wp), 1.0_wp)*(xb - xa)
       d = p - c
-      dn = norm2(d)
+      dn = length2(d)
       if (dn > 0.0_wp) then
          s = dot_product(n, d)/dn
       else

@@ -11,7 +11,7 @@ module vemcontact_contact_surfaces
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input, err_internal
    use vemcontact_model, only: model_t, contact_pair_t, surface_t, location_string, &
                                surface_element, surface_node
-   use vemcontact_contact_geometry, only: segment_is_degenerate
+   use vemcontact_contact_geometry, only: segment_is_degenerate, length2
    implicit none
    private
 
@@ -138,7 +138,7 @@ contains
             do k = 1, size(surf%elem)
                e = surf%elem(k)
                ab = side_nodes(model, e, surf%side(k))
-               l = norm2(model%x(:, ab(2)) - model%x(:, ab(1)))
+               l = length2(model%x(:, ab(2)) - model%x(:, ab(1)))
                in_slave(ab) = .true.
                lsum(ab) = lsum(ab) + 0.5_wp*l
                ltsum(ab) = ltsum(ab) + 0.5_wp*l*model%elem_thick(e)
@@ -160,7 +160,7 @@ contains
                      q = next_in_element(model, e, p)
                      if (.not. in_slave(q)) cycle
                      if (other_element(model, node_ptr, node_elem, e, p, q) /= 0) cycle
-                     l = norm2(model%x(:, q) - model%x(:, p))
+                     l = length2(model%x(:, q) - model%x(:, p))
                      te = model%elem_thick(e)
                      lsum([p, q]) = lsum([p, q]) + 0.5_wp*l
                      ltsum([p, q]) = ltsum([p, q]) + 0.5_wp*l*te

@@ -11,7 +11,7 @@ program test_contact_geometry
    type(checker_t) :: t
    real(wp) :: xa(2), xb(2), tt(2), nn(2), xs(2), xi, g, n(2), d, l
    real(wp) :: a(2, 6), u(6), x6(6), kc(6, 6), kfd(6, 6), f(6), fp(6), fm(6), du(6), dx
-   real(wp) :: k, de, diff, ratio, gtarget, c(2), w
+   real(wp) :: k, de, diff, ratio, gtarget, c(2), w, sc, xi1, g1, n1(2), d1
    integer :: st, j, m
    character(len=32) :: lab
 
@@ -154,6 +154,22 @@ program test_contact_geometry
    call t%close(de, 2.0_wp*dot_product(f, du), 1.0e-8_wp, 'f_c . du = dE')
    w = energy([xa + 0.5_wp*(xb - xa) + 0.1_wp*nn, xa, xb])
    call t%close(w, 0.0_wp, 0.0_wp, 'no energy when open')
+   ! ---- absolute scale: the 3-4-5 projection with all coordinates scaled by
+   ! 1e-300 .. 1e300 gives the same xi and normal and a gap and distance scaled by
+   ! the factor (to a few ulps: the scaled decimal data are rounded); the length
+   ! and xi involve no squares of lengths, which would underflow or overflow
+   xs = xa + 0.3_wp*5.0_wp*tt + 2.0_wp*nn
+   call project_point_segment(xs, xa, xb, xi1, g1, n1, d1, st)
+   do j = -30, 30, 5
+      sc = 10.0_wp**(10*j)
+      call project_point_segment(sc*xs, sc*xa, sc*xb, xi, g, n, d, st)
+      write (lab, '(a,es8.1)') 'scale ', sc
+      call t%equal(st, seg_ok, trim(lab)//': proper segment')
+      call t%close(xi, xi1, 1.0e-14_wp, trim(lab)//': xi')
+      call t%close(g/sc, g1, 1.0e-14_wp, trim(lab)//': gap / scale')
+      call t%close(d/sc, d1, 1.0e-14_wp, trim(lab)//': distance / scale')
+      call t%close(maxval(abs(n - n1)), 0.0_wp, 0.0_wp, trim(lab)//': normal', atol=1.0e-15_wp)
+   end do
    call t%finish()
 contains
    function frozen_force(x) result(ff)
