@@ -50,15 +50,22 @@ contains
    pure subroutine principal_stresses(s, s1, s3, mises)
       real(wp), intent(in) :: s(4)
       real(wp), intent(out) :: s1, s3, mises
-      real(wp) :: centre, radius, dxy, dyz, dzx
+      real(wp) :: centre, radius, dxy, dyz, dzx, m
       centre = 0.5_wp*(s(1) + s(2))
       ! hypot avoids overflow/underflow of the squares for extreme magnitudes
       radius = hypot(0.5_wp*(s(1) - s(2)), s(4))
       s1 = centre + radius
       s3 = centre - radius
-      dxy = s(1) - s(2)
-      dyz = s(2) - s(3)
-      dzx = s(3) - s(1)
-      mises = sqrt(0.5_wp*(dxy*dxy + dyz*dyz + dzx*dzx) + 3.0_wp*s(4)*s(4))
+      ! differences scaled by their largest magnitude, so that the squares neither
+      ! overflow (stresses beyond 1e154) nor underflow (below 1e-154)
+      m = max(abs(s(1) - s(2)), abs(s(2) - s(3)), abs(s(3) - s(1)), abs(s(4)))
+      if (.not. (m > 0.0_wp)) then
+         mises = m
+         return
+      end if
+      dxy = (s(1) - s(2))/m
+      dyz = (s(2) - s(3))/m
+      dzx = (s(3) - s(1))/m
+      mises = m*sqrt(0.5_wp*(dxy*dxy + dyz*dyz + dzx*dzx) + 3.0_wp*(s(4)/m)**2)
    end subroutine principal_stresses
 end module vemcontact_post_stress

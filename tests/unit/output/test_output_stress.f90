@@ -45,6 +45,12 @@ program test_output_stress
    call t%close(s1, sig, rtol, 'plane strain: s1')
    call t%close(s3, 0.0_wp, rtol, 'plane strain: s3', atol=rtol*sig)
    call t%close(vm, sig*sqrt(1.0_wp - nu + nu*nu), rtol, 'plane strain: mises')
+   ! extreme magnitudes: the squares would overflow (1e200) or underflow (1e-200)
+   call principal_stresses([0.0_wp, 0.0_wp, 0.0_wp, 1.0e200_wp], s1, s3, vm)
+   call t%close(vm, sqrt(3.0_wp)*1.0e200_wp, rtol, 'pure shear 1e200: mises')
+   call t%close(s1, 1.0e200_wp, rtol, 'pure shear 1e200: s1')
+   call principal_stresses([1.0e-200_wp, 0.0_wp, 0.0_wp, 0.0_wp], s1, s3, vm)
+   call t%close(vm, 1.0e-200_wp, rtol, 'uniaxial 1e-200: mises')
    ! hydrostatic: no deviator
    call principal_stresses([-sig, -sig, -sig, 0.0_wp], s1, s3, vm)
    call t%close(s1, -sig, rtol, 'hydrostatic: s1')
