@@ -1,17 +1,32 @@
 !> Geometric checks of the elements after reading: every problem is reported with
-!> the file:line where the element was defined, all of them in one go.
+!> the file:line where the element was defined, all of them in one go.  Also the
+!> warnings about answers that are valid but known to be poor (element_warnings):
+!> nearly incompressible materials in plane strain (volumetric locking) and
+!> non-convex quads run with the FEM.  The breakdown points behind the thresholds
+!> are measured in docs/stability-elements.md (bench/stability/elements.py).
 module vemcontact_driver_validate
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, append_message, err_input
-   use vemcontact_model, only: model_t, location_string
-   use vemcontact_element_geometry, only: polygon_signed_area, polygon_is_simple, polygon_diameter
+   use vemcontact_model, only: model_t, location_string, string_t, find_set, plane_strain, form_fem
+   use vemcontact_element_geometry, only: polygon_signed_area, polygon_diameter, polygon_defect, &
+      polygon_max_angle, geom_rtol, defect_none, defect_coincident, defect_fold, defect_crossing
+   use vemcontact_element_quad4, only: quad4_min_gauss_jacobian
    implicit none
    private
 
-   public :: validate_elements
+   public :: validate_elements, element_warnings
 
    !> Most messages listed before the rest are only counted.
    integer, parameter :: max_messages = 50
+
+   !> Poisson's ratio above which plane-strain FEM elements get the locking
+   !> warning.  Measured (docs/stability-elements.md, Timoshenko cantilever in
+   !> plane strain, 32 x 8 quads): tip-deflection error of the Q4 0.9 % at
+   !> nu = 0.3, 3.2 % at 0.45, 14 % at 0.49, 73 % at 0.4999; the CST 5 %, 11 %,
+   !> 32 %, 84 %.  Beyond 0.45 the error has grown several fold, so the user is
+   !> told.  The VEM does not lock (its stabilisation sees a capped lambda, see
+   !> vem_lambda_cap): 0.3 % and 0.1 % at nu = 0.3 and 0.4999, so it gets no warning.
+   real(wp), parameter, public :: nu_lock_warn = 0.45_wp
 
 contains
 
@@ -19,7 +34,6 @@ contains
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: error
       real(wp), allocatable :: xy(:, :)
-      real(wp) :: area, h
       integer :: e, n, nerr, i, j
       integer(ip) :: first
       character(len=:), allocatable :: what
@@ -45,16 +59,7 @@ contains
                end do outer
                if (len(what) == 0) then
                   xy(:, :n) = model%x(:, conn)
-                  area = polygon_signed_area(xy(:, :n))
-                  h = polygon_diameter(xy(:, :n))
-                  if (collinear(xy(:, :n), h)) then
-                     what = 'has zero area (its nodes are collinear or coincide)'
-                  else if (.not. polygon_is_simple(xy(:, :n))) then
-                     what = 'is self-intersecting (its sides cross or touch)'
-                  else if (area <= 0.0_wp) then
-                     what = 'is clockwise: list its nodes counter-clockwise (side numbering and '// &
-                            'surfaces depend on the order, so it is not reversed silently)'
-                  end if
+                  what = shape_defect(model, conn, xy(:, :n), model%elem_form(e))
                end if
             end associate
          end if
@@ -72,6 +77,203 @@ contains
          call append_message(error, '... and '//trim(id)//' more element errors', err_input)
       end if
    end subroutine validate_elements
+
+   !> What is wrong with one element's shape ('' when nothing): zero area,
+   !> coincident nodes (a zero-length side has no normal, and a pinched polygon
+   !> has no interior around the pinch), folded or crossing sides, clockwise
+   !> order, and for the FEM quad a bilinear map that folds at a Gauss point.
+   function shape_defect(model, conn, xy, form) result(what)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: conn(:)
+      real(wp), intent(in) :: xy(:, :)
+      integer, intent(in) :: form
+      character(len=:), allocatable :: what
+      real(wp) :: h, dist, angle
+      integer :: kind, i, j, n, at
+      character(len=96) :: b
+      n = size(xy, 2)
+      what = ''
+      h = polygon_diameter(xy)
+      if (collinear(xy, h)) then
+         write (b, '(es9.2)') abs(polygon_signed_area(xy))/max(h*h, tiny(h))
+         what = 'has zero area (its nodes are collinear or coincide; area/diameter^2 = '// &
+                trim(adjustl(b))//')'
+         return
+      end if
+      call polygon_defect(xy, kind, i, j, dist)
+      b = 'distance '//real_text(dist)//' for a diameter of '//real_text(h)//', below '// &
+          real_text(geom_rtol)//' of it'
+      select case (kind)
+      case (defect_none)
+      case (defect_coincident)
+         if (j == i + 1 .or. (i == 1 .and. j == n)) then
+            what = 'has a zero-length side: its nodes '//nid(i)//' and '//nid(j)//' coincide ('// &
+                   trim(b)//'); a side of no length has no normal, merge the two nodes'
+         else
+            what = 'is self-intersecting: its nodes '//nid(i)//' and '//nid(j)//' coincide ('// &
+                   trim(b)//'), so the polygon is pinched; split it there'
+         end if
+      case (defect_fold)
+         what = 'is self-intersecting: its sides '//nid(prev(i))//'-'//nid(i)//' and '//nid(i)//'-'// &
+                nid(next(i))//' fold back onto each other (zero angle at node '//nid(i)//')'
+      case (defect_crossing)
+         what = 'is self-intersecting: its sides '//nid(i)//'-'//nid(next(i))//' and '//nid(j)//'-'// &
+                nid(next(j))//' cross or touch'
+      case default
+         what = 'has zero area (its nodes are collinear or coincide)'
+      end select
+      if (len(what) > 0) return
+      if (polygon_signed_area(xy) <= 0.0_wp) then
+         what = 'is clockwise: list its nodes counter-clockwise (side numbering and '// &
+                'surfaces depend on the order, so it is not reversed silently)'
+         return
+      end if
+      if (form == form_fem .and. n == 4) then
+         if (.not. quad4_min_gauss_jacobian(xy) > 0.0_wp) then
+            call polygon_max_angle(xy, angle, at)
+            write (b, '(f6.1)') angle
+            what = 'cannot be a FEM quad: it is non-convex (interior angle '//trim(adjustl(b))// &
+                   ' deg at node '//nid(at)//') and its bilinear map folds over (Jacobian not positive '// &
+                   'at a Gauss point); use FORMULATION=VEM, which takes non-convex polygons, or remesh'
+         end if
+      end if
+   contains
+      function nid(k) result(s)
+         integer, intent(in) :: k
+         character(len=:), allocatable :: s
+         character(len=24) :: t
+         write (t, '(i0)') model%node_id(conn(k))
+         s = trim(t)
+      end function nid
+      pure integer function next(k)
+         integer, intent(in) :: k
+         next = modulo(k, n) + 1
+      end function next
+      pure integer function prev(k)
+         integer, intent(in) :: k
+         prev = modulo(k - 2, n) + 1
+      end function prev
+   end function shape_defect
+
+   !> Warnings about valid input whose answer is known to be poor, one line each
+   !> (to be written to the log and to stderr by the caller):
+   !> - a section whose material has nu > nu_lock_warn on plane-strain FEM
+   !>   elements: volumetric locking, with the factors measured;
+   !> - FEM quads that are non-convex but whose Gauss points still see a positive
+   !>   Jacobian (the bilinear map folds near the reflex corner; the patch test
+   !>   still passes, but the element is far stiffer than its shape suggests).
+   !> Only the first max_messages non-convex quads are named.
+   function element_warnings(model) result(lines)
+      type(model_t), intent(in) :: model
+      type(string_t), allocatable :: lines(:)
+      integer :: k, ks, imat, e, n, nq, nt, nv, nbad, at
+      integer(ip) :: first
+      real(wp) :: nu, angle, xy(2, 4)
+      character(len=32) :: b, id
+      character(len=:), allocatable :: s
+      allocate (lines(0))
+      if (allocated(model%sections) .and. allocated(model%materials)) then
+         do k = 1, size(model%sections)
+            imat = model%sections(k)%imat
+            if (imat < 1 .or. imat > size(model%materials)) cycle
+            nu = model%materials(imat)%poisson
+            if (.not. nu > nu_lock_warn) cycle
+            ks = 0
+            if (allocated(model%elsets)) ks = find_set(model%elsets, model%sections(k)%elset)
+            if (ks == 0) cycle
+            nq = 0
+            nt = 0
+            nv = 0
+            do e = 1, size(model%elsets(ks)%items)
+               associate (el => model%elsets(ks)%items(e))
+                  if (model%elem_plane(el) /= plane_strain .or. model%elem_mat(el) /= imat) cycle
+                  n = model%elem_ptr(el + 1) - model%elem_ptr(el)
+                  if (model%elem_form(el) == form_fem) then
+                     if (n == 4) nq = nq + 1
+                     if (n == 3) nt = nt + 1
+                  else
+                     nv = nv + 1
+                  end if
+               end associate
+            end do
+            if (nq + nt == 0) cycle
+            write (b, '(f8.5)') nu
+            s = location_string(model, model%sections(k)%loc)//': warning: element set '// &
+                model%sections(k)%elset//' (material '//model%materials(imat)%name//', nu = '// &
+                trim(adjustl(b))//', plane strain) is nearly incompressible: '
+            s = s//lock_text_fem(nu, nq, nt)
+            if (nv > 0) then
+               write (b, '(i0)') nv
+               s = s//' (its '//trim(b)//' VEM elements are fine)'
+            end if
+            lines = [lines, string_t(s)]
+         end do
+      end if
+      nbad = 0
+      do e = 1, model%nelem
+         if (model%elem_form(e) /= form_fem) cycle
+         first = model%elem_ptr(e)
+         if (model%elem_ptr(e + 1) - first /= 4) cycle
+         xy = model%x(:, model%elem_conn(first:first + 3))
+         if (.not. polygon_signed_area(xy) > 0.0_wp) cycle
+         if (.not. quad4_min_gauss_jacobian(xy) > 0.0_wp) cycle     ! an error of validate_elements
+         call polygon_max_angle(xy, angle, at)
+         if (angle <= 180.0_wp) cycle
+         nbad = nbad + 1
+         if (nbad > max_messages) cycle
+         write (id, '(i0)') model%elem_id(e)
+         write (b, '(f6.1)') angle
+         lines = [lines, string_t(location_string(model, model%elem_loc(e))//': warning: element '// &
+                                  trim(id)//' is a non-convex FEM quad (interior angle '//trim(adjustl(b))// &
+                                  ' deg): its bilinear map folds near that corner, so it is much stiffer '// &
+                                  'than its shape; FORMULATION=VEM takes non-convex polygons')]
+      end do
+      if (nbad > max_messages) then
+         write (id, '(i0)') nbad - max_messages
+         lines = [lines, string_t('warning: ... and '//trim(id)//' more non-convex FEM quads')]
+      end if
+   end function element_warnings
+
+   !> Locking of the FEM elements at Poisson's ratio nu, from the measurements
+   !> (plane-strain Timoshenko cantilever, 32 x 8 quads or the same split in
+   !> triangles; docs/stability-elements.md), quoted at the upper end of the
+   !> bracket nu falls in.
+   pure function lock_text_fem(nu, nq, nt) result(s)
+      real(wp), intent(in) :: nu
+      integer, intent(in) :: nq, nt
+      character(len=:), allocatable :: s, at, q, t
+      character(len=16) :: a, c
+      write (a, '(i0)') nq
+      write (c, '(i0)') nt
+      if (nu <= 0.49_wp) then
+         at = '0.49'; q = '0.86'; t = '0.68'
+      else if (nu <= 0.499_wp) then
+         at = '0.499'; q = '0.48'; t = '0.28'
+      else
+         at = '0.4999'; q = '0.27'; t = '0.16'
+      end if
+      s = 'its '//trim(a)//' FEM quads and '//trim(c)//' FEM triangles lock (fully integrated '// &
+          'bilinear quads and constant-strain triangles become far too stiff as nu -> 0.5): on a '// &
+          'plane-strain cantilever the tip deflection is '//q//' of exact with quads and '//t// &
+          ' with triangles at nu = '//at//' (0.99 and 0.95 at nu = 0.3), so displacements and '// &
+          'stresses may be much too small; FORMULATION=VEM does not lock (1.00 at nu = 0.4999)'
+   end function lock_text_fem
+
+   !> A real in 3 significant digits, no padding: 0, 2.5e-11, 40.8.
+   pure function real_text(v) result(s)
+      real(wp), intent(in) :: v
+      character(len=:), allocatable :: s
+      character(len=24) :: b
+      if (.not. abs(v) > 0.0_wp) then
+         s = '0'
+      else if (abs(v) >= 1.0e-2_wp .and. abs(v) < 1.0e4_wp) then
+         write (b, '(g0.3)') v
+         s = trim(adjustl(b))
+      else
+         write (b, '(es10.2e2)') v
+         s = trim(adjustl(b))
+      end if
+   end function real_text
 
    !> All vertices within 1e-12 diameters of one line (far above round-off of the
    !> coordinates, far below any real element's height).

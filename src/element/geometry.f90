@@ -9,7 +9,14 @@ module vemcontact_element_geometry
    private
 
    public :: polygon_signed_area, polygon_centroid, polygon_diameter
-   public :: polygon_is_simple, polygon_is_convex
+   public :: polygon_is_simple, polygon_is_convex, polygon_defect, polygon_max_angle
+
+   !> Defects found by polygon_defect, in the order they are looked for.
+   integer, parameter, public :: defect_none = 0
+   integer, parameter, public :: defect_few = 1        !< fewer than 3 vertices or zero diameter
+   integer, parameter, public :: defect_coincident = 2 !< vertices i and j within geom_rtol*h
+   integer, parameter, public :: defect_fold = 3       !< side i-1..i folds back onto side i..i+1
+   integer, parameter, public :: defect_crossing = 4   !< side i..i+1 crosses or touches side j..j+1
 
    !> Geometric tolerance relative to the polygon diameter.  Coordinates that
    !> went through a few arithmetic operations (translation, scaling, a mesher's
@@ -87,37 +94,93 @@ contains
    pure function polygon_is_simple(xy) result(ok)
       real(wp), intent(in) :: xy(:, :)
       logical :: ok
+      integer :: kind, i, j
+      real(wp) :: dist
+      call polygon_defect(xy, kind, i, j, dist)
+      ok = kind == defect_none
+   end function polygon_is_simple
+
+   !> The first defect that makes the polygon not simple (see polygon_is_simple),
+   !> for messages: kind (defect_*), the vertex or side numbers i < j involved
+   !> (side k runs from vertex k to vertex k+1), and the distance found, which is
+   !> at most geom_rtol*h.  defect_fold gives the vertex i whose two sides fold.
+   !> A zero-length side is defect_coincident with j = i+1 (or i = 1, j = n).
+   pure subroutine polygon_defect(xy, kind, i, j, dist)
+      real(wp), intent(in) :: xy(:, :)
+      integer, intent(out) :: kind, i, j
+      real(wp), intent(out) :: dist
       real(wp) :: h, tol
-      integer :: i, j, n, ip1, jp1, im1
+      integer :: n, ip1, jp1, im1
       n = size(xy, 2)
-      ok = .false.
+      kind = defect_few
+      i = 0
+      j = 0
+      dist = 0.0_wp
       if (n < 3) return
       h = polygon_diameter(xy)
       if (h <= 0.0_wp) return
       tol = geom_rtol*h
+      kind = defect_coincident
       do j = 2, n
          do i = 1, j - 1
-            if (norm2(xy(:, j) - xy(:, i)) <= tol) return
+            dist = norm2(xy(:, j) - xy(:, i))
+            if (dist <= tol) return
          end do
       end do
       ! a side folds back on its predecessor exactly when the far end of the
       ! shorter one lies on the longer one
+      kind = defect_fold
+      j = 0
       do i = 1, n
          im1 = modulo(i - 2, n) + 1
          ip1 = modulo(i, n) + 1
-         if (point_segment_distance(xy(:, ip1), xy(:, im1), xy(:, i)) <= tol) return
-         if (point_segment_distance(xy(:, im1), xy(:, i), xy(:, ip1)) <= tol) return
+         dist = point_segment_distance(xy(:, ip1), xy(:, im1), xy(:, i))
+         if (dist <= tol) return
+         dist = point_segment_distance(xy(:, im1), xy(:, i), xy(:, ip1))
+         if (dist <= tol) return
       end do
+      kind = defect_crossing
       do i = 1, n - 2
          ip1 = i + 1
          do j = i + 2, n
             if (i == 1 .and. j == n) cycle   ! sides n and 1 are adjacent
             jp1 = modulo(j, n) + 1
-            if (segment_distance(xy(:, i), xy(:, ip1), xy(:, j), xy(:, jp1)) <= tol) return
+            dist = segment_distance(xy(:, i), xy(:, ip1), xy(:, j), xy(:, jp1))
+            if (dist <= tol) return
          end do
       end do
-      ok = .true.
-   end function polygon_is_simple
+      kind = defect_none
+      i = 0
+      j = 0
+      dist = 0.0_wp
+   end subroutine polygon_defect
+
+   !> Largest interior angle in degrees and the vertex where it is, for a
+   !> polygon of either orientation (180 at a hanging node, above 180 at a
+   !> reflex vertex).  Vertices on a zero-length side count as 180.
+   pure subroutine polygon_max_angle(xy, angle, at)
+      real(wp), intent(in) :: xy(:, :)
+      real(wp), intent(out) :: angle
+      integer, intent(out) :: at
+      real(wp), parameter :: rad2deg = 57.295779513082320876798154814105_wp
+      real(wp) :: s, e1(2), e2(2), a
+      integer :: i, n
+      n = size(xy, 2)
+      angle = 0.0_wp
+      at = 0
+      s = sign(1.0_wp, polygon_signed_area(xy))
+      do i = 1, n
+         e1 = xy(:, i) - xy(:, modulo(i - 2, n) + 1)
+         e2 = xy(:, modulo(i, n) + 1) - xy(:, i)
+         a = 180.0_wp
+         if (norm2(e1) > 0.0_wp .and. norm2(e2) > 0.0_wp) &
+            a = 180.0_wp - s*rad2deg*atan2(cross2(e1, e2), dot_product(e1, e2))
+         if (a > angle) then
+            angle = a
+            at = i
+         end if
+      end do
+   end subroutine polygon_max_angle
 
    !> True for a simple polygon that turns the same way at every vertex; a
    !> vertex whose turn is within the geometric tolerance of straight (a

@@ -7,7 +7,7 @@ module vemcontact_element_quad4
    implicit none
    private
 
-   public :: quad4_stiffness, quad4_stress, quad4_load_weights
+   public :: quad4_stiffness, quad4_stress, quad4_load_weights, quad4_min_gauss_jacobian
 
    real(wp), parameter :: xi_node(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]
    real(wp), parameter :: eta_node(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
@@ -46,6 +46,27 @@ contains
          end do
       end do
    end subroutine quad4_stiffness
+
+   !> Smallest Jacobian determinant over the 4 Gauss points, divided by the
+   !> element area/4 (its value on a parallelogram): 1 for a parallelogram, <= 0
+   !> when quad4_stiffness rejects the element.  Lets the model checks name the
+   !> problem before assembly.
+   pure function quad4_min_gauss_jacobian(xy) result(r)
+      real(wp), intent(in) :: xy(:, :)
+      real(wp) :: r, b(3, 8), detj, nsh(4), a
+      integer :: g
+      r = huge(1.0_wp)
+      do g = 1, 4
+         call quad4_point(xy, gp*xi_node(g), gp*eta_node(g), nsh, b, detj)
+         r = min(r, detj)
+      end do
+      a = abs(polygon_signed_area(xy))
+      if (a > 0.0_wp) then
+         r = r/(0.25_wp*a)
+      else
+         r = min(r, 0.0_wp)
+      end if
+   end function quad4_min_gauss_jacobian
 
    !> Average of the four Gauss-point stresses (sxx, syy, sxy); zero for an
    !> element with a non-positive Jacobian (rejected by quad4_stiffness).

@@ -39,6 +39,17 @@ module vemcontact_element_vem
    !> the mean diagonal it leaves ordinary vertices alone.
    real(wp), parameter, public :: vem_tau = 1.0_wp
    real(wp), parameter, public :: vem_floor = 1.0e-2_wp
+   !> Cap on the Lame constant seen by the stabilisation: Kc_ii is taken with
+   !> D12 (lambda) limited to vem_lambda_cap * D33 (mu).  The stabilisation only
+   !> has to hold the non-polynomial (hourglass) modes, whose stiffness is shear
+   !> stiffness; with lambda in it, S grows like 1/(1 - 2 nu) and imposes a
+   !> spurious incompressibility constraint on those modes: the k = 1 VEM then
+   !> locks as badly as the full-integration Q4 (tip deflection 0.28 of exact at
+   !> nu = 0.4999 on a plane-strain cantilever, docs/stability-elements.md).
+   !> lambda = 2 mu is nu = 1/3 in plane strain and nu = 1/2 in plane stress, so
+   !> the cap leaves plane stress and every plane-strain material up to nu = 1/3
+   !> untouched (bit for bit) and makes the stabilisation stop growing beyond.
+   real(wp), parameter, public :: vem_lambda_cap = 2.0_wp
 
 contains
 
@@ -74,7 +85,7 @@ contains
       real(wp), intent(inout) :: work(:)
       integer, intent(out) :: info
       real(wp) :: area, xbar(2), bl(3, 2), cl(3, 2), qx, qy, m2gl(2), tr, floor_s
-      real(wp) :: m0, m1(2), m2(2, 2), gi(2), gl(2), ri(2), rl(2), ail, ali, k, si, sl, rn
+      real(wp) :: m0, m1(2), m2(2, 2), gi(2), gl(2), ri(2), rl(2), ail, ali, k, si, sl, rn, excess
       integer :: n, i, l, a, ia, js
 
       n = size(xy, 2)
@@ -104,14 +115,26 @@ contains
          end do
       end do
 
-      ! D-recipe stabilisation weights, one per vertex (see vem_tau)
+      ! D-recipe stabilisation weights, one per vertex (see vem_tau), from the
+      ! diagonal of Kc with lambda capped (see vem_lambda_cap): the excess
+      ! lambda contributes (t/|E|) excess qx^2 and qy^2 to the two diagonals
+      excess = d(1, 2) - vem_lambda_cap*d(3, 3)
       tr = 0.0_wp
       do ia = 1, 2*n
          tr = tr + ke(ia, ia)
       end do
+      do i = 1, n
+         work(js + i) = ke(2*i - 1, 2*i - 1) + ke(2*i, 2*i)
+      end do
+      if (excess > 0.0_wp) then
+         do i = 1, n
+            work(js + i) = work(js + i) - (thick/area)*excess*(work(2*i - 1)**2 + work(2*i)**2)
+         end do
+         tr = sum(work(js + 1:js + n))
+      end if
       floor_s = vem_floor*tr/real(2*n, wp)
       do i = 1, n
-         work(js + i) = max(0.5_wp*vem_tau*(ke(2*i - 1, 2*i - 1) + ke(2*i, 2*i)), floor_s)
+         work(js + i) = max(0.5_wp*vem_tau*work(js + i), floor_s)
       end do
 
       ! (I-P)^T S (I-P) couples equal components only, since P = p (x) I_2 and
