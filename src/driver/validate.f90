@@ -28,6 +28,13 @@ module vemcontact_driver_validate
    !> vem_lambda_cap): 0.3 % and 0.1 % at nu = 0.3 and 0.4999, so it gets no warning.
    real(wp), parameter, public :: nu_lock_warn = 0.45_wp
 
+   !> Range of lengths the element and contact kernels are written for: squares and
+   !> products of two coordinates (areas, cross products) must stay far from over-
+   !> and underflow.  The scale sweep (docs/stability-contact.md) ran exact from
+   !> 1e-150 to 1e150 m and crashed beyond 1e-160 and 1e160; 1e100 leaves a wide
+   !> margin on both sides and is beyond any unit system a user would pick.
+   real(wp), parameter, public :: coord_max = 1.0e100_wp, size_min = 1.0e-100_wp
+
 contains
 
    subroutine validate_elements(model, error)
@@ -39,6 +46,19 @@ contains
       character(len=:), allocatable :: what
       character(len=24) :: id
       nerr = 0
+      do i = 1, model%nnode
+         if (maxval(abs(model%x(:, i))) > coord_max) then
+            nerr = nerr + 1
+            if (nerr <= max_messages) then
+               write (id, '(i0)') model%node_id(i)
+               call append_message(error, location_string(model, model%node_loc(i))// &
+                                   ': error: node '//trim(id)//' has a coordinate beyond '// &
+                                   '1e100 in magnitude: choose a length unit that brings it into range', &
+                                   err_input)
+            end if
+         end if
+      end do
+      if (nerr > 0) return
       allocate (xy(2, max(3, maxval(model%elem_ptr(2:) - model%elem_ptr(:model%nelem), mask=model%nelem > 0))))
       do e = 1, model%nelem
          first = model%elem_ptr(e)
@@ -59,7 +79,12 @@ contains
                end do outer
                if (len(what) == 0) then
                   xy(:, :n) = model%x(:, conn)
-                  what = shape_defect(model, conn, xy(:, :n), model%elem_form(e))
+                  if (polygon_diameter(xy(:, :n)) < size_min .and. polygon_diameter(xy(:, :n)) > 0.0_wp) then
+                     what = 'is smaller than 1e-100 (its diameter): choose a length unit '// &
+                            'that brings it into range'
+                  else
+                     what = shape_defect(model, conn, xy(:, :n), model%elem_form(e))
+                  end if
                end if
             end associate
          end if

@@ -80,7 +80,7 @@ contains
       h = 0.0_wp
       do j = 2, size(xy, 2)
          do i = 1, j - 1
-            h = max(h, norm2(xy(:, j) - xy(:, i)))
+            h = max(h, hypot(xy(1, j) - xy(1, i), xy(2, j) - xy(2, i)))
          end do
       end do
    end function polygon_diameter
