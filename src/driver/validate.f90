@@ -31,9 +31,9 @@ module vemcontact_driver_validate
    !> Range of lengths the element and contact kernels are written for: squares and
    !> products of two coordinates (areas, cross products) must stay far from over-
    !> and underflow.  The scale sweep (docs/stability-contact.md) ran exact from
-   !> 1e-150 to 1e150 m and crashed beyond 1e-160 and 1e160; 1e100 leaves a wide
-   !> margin on both sides and is beyond any unit system a user would pick.
-   real(wp), parameter, public :: coord_max = 1.0e100_wp, size_min = 1.0e-100_wp
+   !> 1e-150 to 1e150 m and crashed beyond 1e-160 and 1e160; 1e130 leaves a
+   !> margin of 1e20 on both sides and is beyond any unit system a user would pick.
+   real(wp), parameter, public :: coord_max = 1.0e130_wp, size_min = 1.0e-130_wp
 
 contains
 
@@ -53,7 +53,7 @@ contains
                write (id, '(i0)') model%node_id(i)
                call append_message(error, location_string(model, model%node_loc(i))// &
                                    ': error: node '//trim(id)//' has a coordinate beyond '// &
-                                   '1e100 in magnitude: choose a length unit that brings it into range', &
+                                   '1e130 in magnitude: choose a length unit that brings it into range', &
                                    err_input)
             end if
          end if
@@ -80,7 +80,7 @@ contains
                if (len(what) == 0) then
                   xy(:, :n) = model%x(:, conn)
                   if (polygon_diameter(xy(:, :n)) < size_min .and. polygon_diameter(xy(:, :n)) > 0.0_wp) then
-                     what = 'is smaller than 1e-100 (its diameter): choose a length unit '// &
+                     what = 'is smaller than 1e-130 (its diameter): choose a length unit '// &
                             'that brings it into range'
                   else
                      what = shape_defect(model, conn, xy(:, :n), model%elem_form(e))

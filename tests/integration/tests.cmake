@@ -39,8 +39,8 @@ vc_deck_test(floating_part ${VC_DECKS}/floating_part.inp 3 "part 2 of 2 .*elemen
 vc_deck_test(fails_in_step2 ${VC_DECKS}/fails_in_step2.inp 3 "floats"
   FILES fails_in_step2_0001.vtu fails_in_step2.pvd fails_in_step2.h5 ABSENT fails_in_step2_0002.vtu)
 
-# lengths outside 1e-100 .. 1e100: refused before any kernel can over- or underflow
+# lengths outside 1e-130 .. 1e130: refused before any kernel can over- or underflow
 vc_deck_test(err_coord_huge ${VC_DECKS}/err_coord_huge.inp 1
-  "err_coord_huge.inp:[0-9]+: error: node 2 has a coordinate beyond 1e100")
+  "err_coord_huge.inp:[0-9]+: error: node 2 has a coordinate beyond 1e130")
 vc_deck_test(err_coord_tiny ${VC_DECKS}/err_coord_tiny.inp 1
-  "err_coord_tiny.inp:[0-9]+: error: element 1 is smaller than 1e-100")
+  "err_coord_tiny.inp:[0-9]+: error: element 1 is smaller than 1e-130")
