@@ -52,6 +52,12 @@ module vemcontact_driver_linear
       logical :: factored = .false.
       ! phase timings of the last call, seconds
       real(wp) :: t_pattern = 0, t_assemble = 0, t_analyze = 0, t_factorize = 0, t_solve = 0
+      !> contact search of the last solve_state: pairing every slave node with its
+      !> master segment (grid build, queries, gaps) and the new active set, summed
+      !> over the projections of the iterations (the first one included)
+      real(wp) :: t_search = 0
+      !> of t_pattern, the search for the candidate node pairs of the pattern
+      real(wp) :: t_candidates = 0
       logical :: refactorized = .false.           !< whether the last solve_state factorized
       integer :: ordering = 0
       integer :: iterations = 0                   !< contact iterations of the last solve_state
@@ -93,15 +99,18 @@ contains
       real(wp), intent(in) :: u(:)
       integer(i8), allocatable :: adj_ptr(:), ptr2(:)
       integer(ip), allocatable :: adj(:), adj2(:), perm(:), extra(:, :)
-      real(wp) :: t0
+      real(wp) :: t0, t1
 
       t0 = wall_time()
+      self%t_candidates = 0
       call node_graph_from_elements(model%nnode, model%elem_ptr, model%elem_conn, adj_ptr, adj, error)
       if (allocated(error)) return
       if (present(contact)) then
          if (contact%n > 0) then
+            t1 = wall_time()
             call contact%graph_pairs(model, u, extra, error)
             if (allocated(error)) return
+            self%t_candidates = wall_time() - t1
             call merge_node_pairs(model%nnode, adj_ptr, adj, extra, ptr2, adj2, error)
             if (allocated(error)) return
             call move_alloc(ptr2, adj_ptr)
@@ -149,6 +158,7 @@ contains
       real(wp) :: t0
       logical :: warned
       self%iterations = 0
+      self%t_search = 0
       if (present(contact)) then
          if (contact%n > 0) then
             call self%solve_contact(model, st, u, contact, error, log)
@@ -209,7 +219,7 @@ contains
       type(logger_t), intent(in), optional :: log
       logical, allocatable :: fixed(:), history(:, :)
       real(wp), allocatable :: fext(:), f(:), ku(:), fc(:), r(:)
-      real(wp) :: t0, rel, scale, kmax, t_iter, t_fact
+      real(wp) :: t0, rel, scale, kmax, t_iter, t_fact, t_srch
       logical :: warned
       integer :: it, nchanged, maxit, j
       logical :: ok
@@ -228,14 +238,16 @@ contains
       end do
       allocate (history(contact%n, 0:maxit))
       ! start from the state left by the previous step (or the undeformed one)
+      t0 = wall_time()
       call contact%project(model, u, error)
       if (allocated(error)) return
       call contact%update_active(nchanged)
+      self%t_search = wall_time() - t0
       history(:, 0) = contact%active
       self%t_factorize = 0
       self%t_solve = 0
       if (present(log)) call log%say('  iter  active  changed     residual  max penetration  max pressure'// &
-                                     '    time [s]  factorize [s]')
+                                     '    time [s]  factorize [s]  search [s]')
       do it = 1, maxit
          self%iterations = it
          t_iter = wall_time()
@@ -288,9 +300,12 @@ contains
          self%factored_fixed = fixed
 
          ! new pairing and active set; residual of the equilibrium with them
+         t0 = wall_time()
          call contact%project(model, u, error)
          if (allocated(error)) return
          call contact%update_active(nchanged)
+         t_srch = wall_time() - t0
+         self%t_search = self%t_search + t_srch
          call sym_matvec(self%k, u, ku)
          fc = 0.0_wp
          call contact%forces(fc)
@@ -303,9 +318,9 @@ contains
                  *norm2(u) + norm2(merge(0.0_wp, fext, fixed)) + norm2(fc)
          rel = 0.0_wp
          if (scale > 0.0_wp) rel = norm2(r)/scale
-         write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4)') it, &
+         write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4,2x,f10.6)') it, &
             count(contact%active), nchanged, rel, contact%max_penetration(), contact%max_pressure(), &
-            wall_time() - t_iter, t_fact
+            wall_time() - t_iter, t_fact, t_srch
          if (present(log)) call log%say(trim(buf))
          history(:, it) = contact%active
          if (nchanged == 0 .and. rel <= model%controls%residual_tol) return

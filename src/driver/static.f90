@@ -85,6 +85,8 @@ contains
       write (buf, '(2x,a,i0,a,es9.2,a,a)') 'factor nnz ', sys%solver%nnz_factor, ', flops ', sys%solver%flops
       call log%say(trim(buf))
       call log%phase('pattern', sys%t_pattern)
+      ! of which the contact search for the candidate pairs of the pattern
+      if (contact%n > 0) call log%phase('candidates', sys%t_candidates)
       call log%phase('assemble', sys%t_assemble)
       call log%phase('analyze', sys%t_analyze)
 
@@ -112,6 +114,8 @@ contains
          end if
          if (sys%refactorized) call log%phase('factorize', sys%t_factorize)
          call log%phase('solve', sys%t_solve)
+         ! pairing and active set of every iteration of the step (also in the iteration lines)
+         if (contact%n > 0) call log%phase('search', sys%t_search)
          if (opts%write_matrix .and. istep == 1) then
             call write_matrix_market(base//'.mtx', sys%kb, error)
             if (allocated(error)) return
