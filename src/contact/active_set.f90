@@ -10,7 +10,10 @@
 !> linear in u, g = g0 + n.A(xi) u with g0 = n.(X_s - X_xi) from the reference
 !> coordinates, so an iteration with a fixed active set and pairing is one linear
 !> solve.  A slave node is active when g <= 0 (H(-g) of the paper, so surfaces
-!> that touch initially, as the Hertz disc, start closed).
+!> that touch initially, as the Hertz disc, start closed).  Once the active set
+!> holds, the matrix and right-hand side also carry the geometric part of the
+!> contact stiffness, so that the iteration on the pairing (which follows u) is a
+!> Newton iteration rather than a fixed point (docs/contact-robustness.md).
 module vemcontact_contact_active_set
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
@@ -18,7 +21,8 @@ module vemcontact_contact_active_set
    use vemcontact_contact_surfaces, only: master_segments, slave_nodes
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
                                         contact_graph_pairs
-   use vemcontact_contact_geometry, only: relative_map, contact_stiffness, project_point_segment, seg_ok, length2
+   use vemcontact_contact_geometry, only: relative_map, contact_stiffness, contact_geometric_stiffness, &
+                                          project_point_segment, seg_ok, length2
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_driver_supports, only: spring_t
@@ -44,6 +48,16 @@ module vemcontact_contact_active_set
    !> not representable geometry; overclosures from displacements are not affected.
    real(wp), parameter, public :: gap0_roundoff = 16.0_wp
 
+   !> The geometric part of the contact stiffness (contact_geometric_stiffness) is
+   !> indefinite, with eigenvalues up to about +-2 k |g| / l.  It is taken in full
+   !> while 2 k |g| / l stays below this fraction of E * thickness (the smallest over
+   !> the pair's elements), the order of a node's elastic stiffness, so that the
+   !> matrix stays positive definite; beyond, it is scaled down to that bound.  Any
+   !> weight gives the same converged solution (the right-hand side carries the
+   !> same term): only the convergence rate depends on it.  Large k |g| / l occur in
+   !> the first iterations of a curved contact, when one node carries the load.
+   real(wp), parameter, public :: geometric_bound = 0.25_wp
+
    !> One contact pair's geometry.
    type :: pair_data_t
       integer(ip), allocatable :: seg(:, :)   !< (2, nseg) master segments, element orientation
@@ -51,6 +65,8 @@ module vemcontact_contact_active_set
       integer :: nslave = 0
       real(wp) :: radius = 0.0_wp             !< search radius: twice the longest master segment
       real(wp) :: slope = 0.0_wp              !< penalty slope K of the interaction
+      !> smallest E * thickness of the elements of the slave nodes and master segments
+      real(wp) :: stiffness = 0.0_wp
       logical :: small_sliding = .false.      !< pairing fixed at the undeformed state
       logical :: paired = .false.             !< the small-sliding pairing has been made
    end type pair_data_t
@@ -65,6 +81,10 @@ module vemcontact_contact_active_set
       real(wp), allocatable :: k(:)            !< spring stiffness K * length * thick
       integer(ip), allocatable :: iseg(:)      !< chosen segment (index into its pair's seg), 0 if none
       real(wp), allocatable :: xi(:), gap(:), gap0(:), normal(:, :)
+      real(wp), allocatable :: seglen(:)       !< current length of the chosen segment
+      !> weight of the geometric stiffness (0 .. 1, geometric_bound) and its
+      !> right-hand side weight * K_geo u at the displacements of the pairing
+      real(wp), allocatable :: geo_weight(:), geo_rhs(:, :)
       logical, allocatable :: active(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
    contains
@@ -123,6 +143,7 @@ contains
                                        2.0_wp*length2(model%x(:, seg(2, i)) - model%x(:, seg(1, i))))
          end do
          self%pairs(p)%slope = model%interactions(model%pairs(p)%interaction)%penalty
+         self%pairs(p)%stiffness = pair_stiffness(model, seg_elem, node)
          self%pairs(p)%small_sliding = model%pairs(p)%small_sliding
          self%pairs(p)%first = size(all_node)
          self%pairs(p)%nslave = size(node)
@@ -155,8 +176,37 @@ contains
       allocate (self%iseg(n), source=0_ip)
       allocate (self%xi(n), self%gap(n), self%gap0(n), source=0.0_wp)
       allocate (self%normal(2, n), source=0.0_wp)
+      allocate (self%seglen(n), self%geo_weight(n), source=0.0_wp)
+      allocate (self%geo_rhs(6, n), source=0.0_wp)
       allocate (self%active(n), source=.false.)
    end subroutine allocate_entries
+
+   !> Smallest E * thickness over the master segments' elements and the elements
+   !> around the slave nodes (0 when no element has a material).
+   function pair_stiffness(model, seg_elem, node) result(et)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: seg_elem(:), node(:)
+      real(wp) :: et
+      logical, allocatable :: is_slave(:), is_master(:)
+      logical :: found
+      integer(ip) :: e
+      et = 0.0_wp
+      if (.not. (allocated(model%elem_mat) .and. allocated(model%elem_thick) .and. &
+                 allocated(model%materials))) return
+      et = huge(1.0_wp)
+      found = .false.
+      allocate (is_slave(model%nnode), is_master(model%nelem), source=.false.)
+      is_slave(node) = .true.
+      is_master(seg_elem) = .true.
+      do e = 1, model%nelem
+         if (model%elem_mat(e) < 1) cycle
+         if (.not. (is_master(e) .or. &
+                    any(is_slave(model%elem_conn(model%elem_ptr(e):model%elem_ptr(e + 1) - 1))))) cycle
+         et = min(et, model%materials(model%elem_mat(e))%young*model%elem_thick(e))
+         found = .true.
+      end do
+      if (.not. found) et = 0.0_wp
+   end function pair_stiffness
 
    !> Node pairs (slave, master node) that contact can couple with displacements
    !> u (current configuration x + u): the extra edges of the matrix pattern.
@@ -204,7 +254,8 @@ contains
             lo = pd%first + 1
             hi = pd%first + pd%nslave
             if (pd%small_sliding .and. pd%paired) then
-               ! the pairing stays that of the undeformed state: only the gaps move
+               ! the pairing stays that of the undeformed state: only the gaps move,
+               ! linearly in u, so the frozen stiffness is exact (no geometric part)
                do i = lo, hi
                   if (self%iseg(i) == 0) cycle
                   a = pd%seg(1, self%iseg(i))
@@ -223,6 +274,8 @@ contains
                                   self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
             do i = lo, hi
                call keep_previous(i, prev(i - lo + 1))
+               self%geo_weight(i) = 0.0_wp
+               self%geo_rhs(:, i) = 0.0_wp
                if (self%iseg(i) == 0) cycle
                a = pd%seg(1, self%iseg(i))
                b = pd%seg(2, self%iseg(i))
@@ -237,11 +290,38 @@ contains
                        maxval(abs(model%x(:, b))))) self%gap0(i) = 0.0_wp
                self%gap(i) = self%gap0(i) + dot_product(self%normal(:, i), u(2*self%node(i) - 1:2*self%node(i)) - &
                              ((1.0_wp - self%xi(i))*u(2*a - 1:2*a) + self%xi(i)*u(2*b - 1:2*b)))
+               if (.not. pd%small_sliding) call geometric_term(i, a, b)
             end do
             pd%paired = .true.
          end associate
       end do
    contains
+      !> Weight and right-hand side of the geometric stiffness of entry i paired
+      !> with the segment a -> b: the pairing follows u, and without this part of
+      !> the Jacobian the iteration on the pairing is a fixed point whose rate
+      !> degrades on fine meshes (docs/contact-robustness.md).
+      subroutine geometric_term(i, a, b)
+         integer, intent(in) :: i
+         integer(ip), intent(in) :: a, b
+         real(wp) :: f, kg(6, 6), ue(6)
+         self%seglen(i) = length2(xc(:, b) - xc(:, a))
+         self%geo_weight(i) = 0.0_wp
+         self%geo_rhs(:, i) = 0.0_wp
+         if (.not. (self%gap(i) < 0.0_wp .and. self%seglen(i) > 0.0_wp)) return
+         associate (pd => self%pairs(self%pair(i)))
+            f = 2.0_wp*self%k(i)*abs(self%gap(i))/self%seglen(i)
+            if (f <= geometric_bound*pd%stiffness) then
+               self%geo_weight(i) = 1.0_wp
+            else
+               self%geo_weight(i) = geometric_bound*pd%stiffness/f
+            end if
+         end associate
+         kg = self%geo_weight(i)*contact_geometric_stiffness(self%xi(i), self%normal(:, i), self%seglen(i), &
+                                                              self%k(i), self%gap(i))
+         ue = [u(2*self%node(i) - 1:2*self%node(i)), u(2*a - 1:2*a), u(2*b - 1:2*b)]
+         self%geo_rhs(:, i) = matmul(kg, ue)
+      end subroutine geometric_term
+
       subroutine keep_previous(i, iprev)
          integer, intent(in) :: i
          integer(ip), intent(in) :: iprev
@@ -262,6 +342,11 @@ contains
    end subroutine project
 
    !> New active set from the current gaps; returns how many entries changed.
+   !> While the active set changes, the next solve keeps the pairing frozen (no
+   !> geometric stiffness): far from the solution, as in the first iterations of a
+   !> curved contact where a few nodes penetrate deeply, its linearization is poor
+   !> and indefinite; once the active set holds, the geometric part makes the
+   !> iteration on the pairing a Newton iteration.
    subroutine update_active(self, nchanged)
       class(contact_state_t), intent(inout) :: self
       integer, intent(out) :: nchanged
@@ -269,6 +354,10 @@ contains
       new = self%iseg > 0 .and. self%gap <= 0.0_wp
       nchanged = count(new .neqv. self%active)
       self%active = new
+      if (nchanged > 0) then
+         self%geo_weight = 0.0_wp
+         self%geo_rhs = 0.0_wp
+      end if
    end subroutine update_active
 
    !> Add k A^T n n^T A of the active springs to `a`; `ok` false when a spring
@@ -283,12 +372,17 @@ contains
          if (.not. self%active(i)) cycle
          ! closed springs carry their stiffness even at g = 0 exactly (initial touching)
          call add_element_matrix(a, nodes_of(self, i), &
-                                 contact_stiffness(self%xi(i), self%normal(:, i), self%k(i), -1.0_wp), ok)
+                                 contact_stiffness(self%xi(i), self%normal(:, i), self%k(i), -1.0_wp) + &
+                                 self%geo_weight(i)*contact_geometric_stiffness(self%xi(i), self%normal(:, i), &
+                                                                                self%seglen(i), self%k(i), &
+                                                                                self%gap(i)), ok)
          if (.not. ok) return
       end do
    end subroutine add_stiffness
 
-   !> Right-hand side of the active springs: -k g0 A^T n.
+   !> Right-hand side of the active springs: -k g0 A^T n, plus K_geo u_p (u_p the
+   !> displacements of the pairing), so that a solve is a Newton step:
+   !> (K + K_c + K_geo) u = f_ext - f_c(u_p) + (K_c + K_geo) u_p.
    subroutine add_rhs(self, f)
       class(contact_state_t), intent(in) :: self
       real(wp), intent(inout) :: f(:)
@@ -296,7 +390,7 @@ contains
       do i = 1, self%n
          if (.not. self%active(i)) cycle
          call scatter(f, nodes_of(self, i), -self%k(i)*self%gap0(i)* &
-                      matmul(self%normal(:, i), relative_map(self%xi(i))))
+                      matmul(self%normal(:, i), relative_map(self%xi(i))) + self%geo_rhs(:, i))
       end do
    end subroutine add_rhs
 

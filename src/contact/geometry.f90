@@ -8,13 +8,15 @@
 !> g = n.(x_s - x_xi) (> 0 open, < 0 penetration), and the relative displacement
 !> u_s - u_xi = A(xi) [u_s; u_a; u_b] with A = [I, -(1-xi) I, -xi I].
 !> The penalty energy 1/2 k <-g>**2 gives the force f = k g A^T n (g < 0) and,
-!> with n and xi frozen, the stiffness k A^T n n^T A (the paper's Eq. 3.13).
+!> with n and xi frozen, the stiffness k A^T n n^T A (the paper's Eq. 3.13);
+!> contact_geometric_stiffness is the rest of the exact Hessian of the energy.
 module vemcontact_contact_geometry
    use vemcontact_kinds, only: wp
    implicit none
    private
 
    public :: project_point_segment, relative_map, contact_force, contact_stiffness
+   public :: contact_geometric_stiffness
    public :: contact_energy, contact_pressure, segment_is_degenerate, length2
 
    !> project_point_segment status: a proper segment
@@ -123,6 +125,34 @@ contains
          kc = 0.0_wp
       end if
    end function contact_stiffness
+
+   !> The part of the Hessian of 1/2 k <-g>**2 that contact_stiffness leaves out:
+   !> k g d2g/du2, from the rotation of n and the motion of xi, for g < 0 (else
+   !> zero).  With tau = t/l, T = A(xi)^T tau and N0 = [0; -n; n] (so that
+   !> n.(u_b - u_a) = N0.u):
+   !>
+   !>     d2g/du2 = -(T N0^T + N0 T^T)/l - g N0 N0^T / l**2
+   !>
+   !> (docs/contact-formulation.md).  Symmetric, indefinite, of size k |g| / l:
+   !> negligible against k A^T n n^T A, but not against the elastic stiffness in
+   !> the tangential directions, where the contact spring adds nothing.
+   !> `l` is the current length of the segment.
+   pure function contact_geometric_stiffness(xi, normal, l, k, gap) result(kg)
+      real(wp), intent(in) :: xi, normal(2), l, k, gap
+      real(wp) :: kg(6, 6)
+      real(wp) :: tau(2), tv(6), n0(6)
+      integer :: j
+      if (gap < 0.0_wp .and. l > 0.0_wp) then
+         tau = [-normal(2), normal(1)]
+         tv = matmul(tau, relative_map(xi))
+         n0 = [0.0_wp, 0.0_wp, -normal, normal]
+         do j = 1, 6
+            kg(:, j) = -(k*gap/l)*(tv*n0(j) + n0*tv(j) + (gap/l)*n0*n0(j))
+         end do
+      else
+         kg = 0.0_wp
+      end if
+   end function contact_geometric_stiffness
 
    !> Penalty energy 1/2 k <-g>**2 of one contact point.
    pure real(wp) function contact_energy(k, gap) result(e)
