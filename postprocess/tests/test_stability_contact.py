@@ -84,6 +84,13 @@ def test_blocks_contrast_breakdown_stops(exe, tmp_path, ratio, rule):
     assert "too ill-conditioned to solve accurately" in r.stderr
     assert "reciprocal condition estimate" in r.stderr
     assert row["rcond"] < 1e-12
+    # the hint names the culprit: the penalty only when the springs are stiffer than
+    # the elastic entries (K of the stiff body, 1e9), the moduli otherwise (K of the
+    # soft body: its springs are 1e3 / contrast of the stiff body's entries)
+    if rule == "stiff":
+        assert "lower the penalty slope K" in r.stderr
+    else:
+        assert "moduli" in r.stderr and "penalty slope" not in r.stderr
 
 
 @pytest.mark.parametrize("ratio", [1e-6, 1e6])

@@ -7,6 +7,7 @@ module vemcontact_driver_static
    use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic
    use vemcontact_sparse_mmio, only: write_matrix_market
    use vemcontact_driver_linear, only: linear_system_t
+   use vemcontact_driver_validate, only: element_warnings
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_assembly, only: element_stresses
    use vemcontact_post_stress, only: nodal_average
@@ -44,9 +45,9 @@ contains
       integer :: ip_
       type(h5_writer_t) :: h5
       real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:)
-      type(string_t), allocatable :: vtu_files(:)
+      type(string_t), allocatable :: vtu_files(:), warnings(:)
       real(wp) :: t0
-      integer :: istep
+      integer :: istep, iw
       character(len=256) :: buf
       character(len=:), allocatable :: base, vtu_name, name
 
@@ -78,6 +79,11 @@ contains
       end if
       call sys%setup(model, opts%ordering, error, contact)
       if (allocated(error)) return
+      ! valid but known to be poor: locking FEM sections, non-convex FEM quads
+      warnings = element_warnings(model)
+      do iw = 1, size(warnings)
+         call log%say(warnings(iw)%s)
+      end do
       if (any(sys%unused)) then
          write (buf, '(2x,a,i0,a)') 'note: ', count(sys%unused), ' nodes belong to no element and are left out'
          call log%say(trim(buf))
