@@ -38,12 +38,15 @@ contains
    !> elastic_matrix, `thick` the thickness.  info: 0 ok, 1 non-positive area,
    !> 2 FEM requested for an element that is not a 3- or 4-node element,
    !> 3 non-positive Jacobian at a Gauss point (FEM quad); ke = 0 when info /= 0.
-   pure subroutine element_stiffness(form, xy, d, thick, ke, work, info)
+   !> `tau` (optional, > 0): the VEM stabilisation factor (vem_stiffness, default
+   !> vem_tau = 1); the FEM kernels have no stabilisation and ignore it.
+   pure subroutine element_stiffness(form, xy, d, thick, ke, work, info, tau)
       integer, intent(in) :: form
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick
       real(wp), intent(out) :: ke(:, :)
       real(wp), intent(inout) :: work(:)
       integer, intent(out) :: info
+      real(wp), intent(in), optional :: tau
       if (form == form_fem) then
          select case (size(xy, 2))
          case (3)
@@ -55,7 +58,7 @@ contains
             info = elem_fem_nodes
          end select
       else
-         call vem_stiffness(xy, d, thick, ke, work, info)
+         call vem_stiffness(xy, d, thick, ke, work, info, tau)
       end if
    end subroutine element_stiffness
 

@@ -62,13 +62,16 @@ module vemcontact_model
       type(source_loc_t) :: loc
    end type material_t
 
-   !> *SOLID SECTION: assigns material, thickness and formulation to an element set.
+   !> *SOLID SECTION: assigns material, thickness, formulation and the VEM
+   !> stabilisation factor to an element set.
    type :: section_t
       character(len=:), allocatable :: elset     !< upper case
       character(len=:), allocatable :: material  !< upper case
       integer :: imat = 0                        !< index into model%materials
       real(wp) :: thickness = 1.0_wp
       integer :: formulation = 0                 !< form_vem, form_fem, or 0 = element default
+      real(wp) :: stabilization = 1.0_wp         !< VEM stabilisation factor tau (STABILIZATION=)
+      logical :: has_stabilization = .false.     !< STABILIZATION= given (refused on FEM elements)
       type(source_loc_t) :: loc
    end type section_t
 
@@ -161,6 +164,9 @@ module vemcontact_model
       integer, allocatable :: elem_form(:)         !< form_* after sections are applied
       integer, allocatable :: elem_mat(:)          !< material index, 0 = none
       real(wp), allocatable :: elem_thick(:)
+      !> VEM stabilisation factor tau of each element (1 = the default of the
+      !> element kernel); models built without it (unallocated) use 1 everywhere
+      real(wp), allocatable :: elem_stab(:)
       type(source_loc_t), allocatable :: elem_loc(:)
       ! sets, materials, sections, steps
       type(named_set_t), allocatable :: nsets(:)

@@ -94,10 +94,11 @@ contains
          model%elem_plane = model%elem_plane(1:n)
          model%elem_loc = model%elem_loc(1:n)
       end if
-      allocate (model%elem_form(n), model%elem_mat(n), model%elem_thick(n))
+      allocate (model%elem_form(n), model%elem_mat(n), model%elem_thick(n), model%elem_stab(n))
       model%elem_form = 0
       model%elem_mat = 0
       model%elem_thick = 1.0_wp
+      model%elem_stab = 1.0_wp
       call p%elem_map%build(model%elem_id)
       do k = 1, p%elem_map%ndup
          a = p%elem_map%dup(1, k)
@@ -155,8 +156,8 @@ contains
       type(model_t), intent(inout) :: model
       integer, allocatable :: owner(:)
       logical, allocatable :: reported(:)
-      integer :: s, m, nmissing, nbad, nfem
-      integer(ip) :: i, e, nn, efirst, ebad
+      integer :: s, m, nmissing, nbad, nfem, nstab
+      integer(ip) :: i, e, nn, efirst, ebad, estab
       character(len=:), allocatable :: help
       allocate (owner(model%nelem), reported(p%nmat))
       owner = 0
@@ -191,8 +192,10 @@ contains
             end if
             nbad = 0
             nfem = 0
+            nstab = 0
             efirst = 0
             ebad = 0
+            estab = 0
             do i = 1, p%sec_items(s)%n
                e = p%sec_items(s)%a(i)
                if (owner(e) /= 0) then
@@ -205,6 +208,7 @@ contains
                owner(e) = s
                model%elem_mat(e) = sec%imat
                model%elem_thick(e) = sec%thickness
+               model%elem_stab(e) = sec%stabilization
                if (sec%formulation /= 0) then
                   model%elem_form(e) = sec%formulation
                else if (model%elem_type(e) == etype_polygon) then
@@ -217,11 +221,22 @@ contains
                   nfem = nfem + 1
                   if (nfem == 1) ebad = e
                end if
+               ! the FEM kernels have no stabilisation: a factor there would be ignored silently
+               if (model%elem_form(e) == form_fem .and. sec%has_stabilization) then
+                  nstab = nstab + 1
+                  if (nstab == 1) estab = e
+               end if
             end do
             if (nbad > 0) then
                call err_at(p, sec%loc, 'element '//int_str(model%elem_id(efirst))//' already has a section (from '// &
                            loc_str(p, model%sections(owner(efirst))%loc)//')'//more(nbad - 1), &
                            'every element needs exactly one *SOLID SECTION')
+            end if
+            if (nstab > 0) then
+               call err_at(p, sec%loc, 'STABILIZATION= on FEM element '//int_str(model%elem_id(estab))// &
+                           more(nstab - 1)//': only the virtual element has a stabilisation', &
+                           'use FORMULATION=VEM, or drop STABILIZATION= (CPE*/CPS* elements are FEM '// &
+                           'unless the section says FORMULATION=VEM)')
             end if
             if (nfem > 0) then
                call err_at(p, sec%loc, 'FORMULATION=FEM on element '//int_str(model%elem_id(ebad))//' with '// &

@@ -9,7 +9,8 @@ module vemcontact_deck_props
                                     set_suggestion, loc_str, push_item, field, tidy_items
    use vemcontact_deck_lines, only: advance
    use vemcontact_deck_source, only: line_data
-   use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param
+   use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param, squeeze
+   use vemcontact_deck_numbers, only: parse_real, num_ok
    implicit none
    private
 
@@ -153,20 +154,37 @@ contains
       call extra_lines(p, '*DENSITY')
    end subroutine read_density
 
-   !> *SOLID SECTION, ELSET=, MATERIAL= [, FORMULATION=VEM|FEM]; data line: [thickness].
+   !> *SOLID SECTION, ELSET=, MATERIAL= [, FORMULATION=VEM|FEM] [, STABILIZATION=tau];
+   !> data line: [thickness].  STABILIZATION (vemcontact) scales the VEM stabilisation;
+   !> its use on FEM elements is refused once formulations are known (finish).
    subroutine read_section(p, model, kw)
       type(deck_parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
-      character(len=:), allocatable :: elset, mat, form
+      character(len=:), allocatable :: elset, mat, form, stab
       type(section_t), allocatable :: t(:)
       type(item_list_t), allocatable :: ti(:)
-      logical :: found, ok
-      integer :: kset, k, nline
-      real(wp) :: thick
+      logical :: found, ok, has_stab
+      integer :: kset, k, nline, stat
+      real(wp) :: thick, tau
       call get_param(kw, 'ELSET', elset, found)
       call get_param(kw, 'MATERIAL', mat, found)
       call get_param(kw, 'FORMULATION', form, found)
+      call get_param(kw, 'STABILIZATION', stab, has_stab)
+      tau = 1.0_wp
+      if (has_stab) then
+         ! the registry has checked that it is a finite number
+         call parse_real(squeeze(stab), tau, stat)
+         if (stat /= num_ok) then
+            has_stab = .false.
+            tau = 1.0_wp
+         else if (.not. tau > 0.0_wp) then
+            call err_here(p, 'STABILIZATION = '//stab//' must be positive', &
+                          'it scales the VEM stabilisation (hourglass) stiffness; default 1, '// &
+                          'see docs/vem-stabilisation.md')
+            tau = 1.0_wp
+         end if
+      end if
       call get_set(model%elsets, p%elset_items, p%nelset, elset, here(p), .false., kset)
       if (kset == 0) then
          call err_here(p, 'undefined element set '//elset, set_suggestion(model%elsets, p%nelset, elset))
@@ -190,6 +208,8 @@ contains
          s%loc = here(p)
          s%thickness = 1.0_wp
          s%formulation = 0
+         s%stabilization = tau
+         s%has_stabilization = has_stab
          if (form == 'VEM') s%formulation = form_vem
          if (form == 'FEM') s%formulation = form_fem
          items%n = 0

@@ -77,7 +77,7 @@ module vemcontact_deck_registry
                                       keyword_spec_t('GEOSTATIC', ctx_step, data_optional), &
                                       keyword_spec_t('DSLOAD', ctx_step, data_optional)]
 
-   type(param_spec_t), parameter :: params(31) = [ &
+   type(param_spec_t), parameter :: params(32) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -91,6 +91,8 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_solid_section, 'ELSET', par_value, .true., val_name, ''), &
                                     param_spec_t(kw_solid_section, 'MATERIAL', par_value, .true., val_name, ''), &
                                     param_spec_t(kw_solid_section, 'FORMULATION', par_value, .false., val_name, 'VEM FEM'), &
+                                    ! vemcontact: VEM stabilisation factor tau; positivity checked by the handler
+                                    param_spec_t(kw_solid_section, 'STABILIZATION', par_value, .false., val_real, ''), &
                                     param_spec_t(kw_boundary, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_cload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_dload, 'OP', par_value, .false., val_name, 'MOD NEW'), &

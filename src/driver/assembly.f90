@@ -45,8 +45,13 @@ contains
          associate (mat => model%materials(model%elem_mat(e)))
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
          end associate
-         call element_stiffness(model%elem_form(e), xy(:, :n), d, &
-                                model%elem_thick(e), ke(:2*n, :2*n), work, info)
+         if (allocated(model%elem_stab)) then
+            call element_stiffness(model%elem_form(e), xy(:, :n), d, &
+                                   model%elem_thick(e), ke(:2*n, :2*n), work, info, model%elem_stab(e))
+         else
+            call element_stiffness(model%elem_form(e), xy(:, :n), d, &
+                                   model%elem_thick(e), ke(:2*n, :2*n), work, info)
+         end if
          if (info /= 0) then
             nerr = nerr + 1
             write (buf, '(i0)') model%elem_id(e)

@@ -21,7 +21,12 @@ module vemcontact_element_vem
    public :: vem_workspace_size, vem_stiffness, vem_strain, vem_stress, vem_load_weights
 
    !> Stabilisation S = s (x) I_2 with, for vertex i,
-   !>   s_i = max(vem_tau * (Kc_(ix,ix) + Kc_(iy,iy))/2, vem_floor * trace(Kc)/(2n)).
+   !>   s_i = tau * max((Kc_(ix,ix) + Kc_(iy,iy))/2, vem_floor * trace(Kc)/(2n)),
+   !> tau = vem_tau unless the caller passes its own (*SOLID SECTION,
+   !> STABILIZATION=tau; docs/vem-stabilisation.md measures its effect).  The
+   !> floor is scaled with tau as well, so S(tau) = tau S(1) exactly: tau is a
+   !> pure scale of the hourglass stiffness and the floor keeps its meaning (a
+   !> fraction of the stabilisation level, not of the consistency part).
    !> Kc_ii is the stiffness the consistency part gives dof i, so S follows the
    !> material (E, nu, thickness) and the local geometry and, like Kc, is
    !> invariant under scaling of the element (2D elasticity is scale-free).
@@ -78,13 +83,16 @@ contains
 
    !> Stiffness ke(2n, 2n), dof order (u1x, u1y, u2x, ...).  info = 1 when the
    !> signed area is not positive (clockwise or degenerate polygon); ke = 0 then.
+   !> `tau` (> 0, default vem_tau) scales the stabilisation; the consistency
+   !> part, hence the patch test, does not depend on it.
    !> Precondition: size(work) >= vem_workspace_size(n), ke is (2n, 2n).
-   pure subroutine vem_stiffness(xy, d, thick, ke, work, info)
+   pure subroutine vem_stiffness(xy, d, thick, ke, work, info, tau)
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick
       real(wp), intent(out) :: ke(:, :)
       real(wp), intent(inout) :: work(:)
       integer, intent(out) :: info
-      real(wp) :: area, xbar(2), bl(3, 2), cl(3, 2), qx, qy, m2gl(2), tr, floor_s
+      real(wp), intent(in), optional :: tau
+      real(wp) :: area, xbar(2), bl(3, 2), cl(3, 2), qx, qy, m2gl(2), tr, floor_s, ts
       real(wp) :: m0, m1(2), m2(2, 2), gi(2), gl(2), ri(2), rl(2), ail, ali, k, si, sl, rn, excess
       integer :: n, i, l, a, ia, js
 
@@ -132,9 +140,13 @@ contains
          end do
          tr = sum(work(js + 1:js + n))
       end if
-      floor_s = vem_floor*tr/real(2*n, wp)
+      ts = vem_tau
+      if (present(tau)) ts = tau
+      ! with ts = 1 both products are exact: the default matrices are bit for bit
+      ! those of the fixed tau = 1
+      floor_s = ts*(vem_floor*tr/real(2*n, wp))
       do i = 1, n
-         work(js + i) = max(0.5_wp*vem_tau*work(js + i), floor_s)
+         work(js + i) = max(0.5_wp*ts*work(js + i), floor_s)
       end do
 
       ! (I-P)^T S (I-P) couples equal components only, since P = p (x) I_2 and

@@ -44,3 +44,20 @@ vc_deck_test(err_coord_huge ${VC_DECKS}/err_coord_huge.inp 1
   "err_coord_huge.inp:[0-9]+: error: node 2 has a coordinate beyond 1e130")
 vc_deck_test(err_coord_tiny ${VC_DECKS}/err_coord_tiny.inp 1
   "err_coord_tiny.inp:[0-9]+: error: element 1 is smaller than 1e-130")
+
+# *SOLID SECTION, STABILIZATION=tau (VEM stabilisation factor): read and used (the
+# tip deflection of paper example 1 falls as tau grows, tau = 1 is the default);
+# refused on FEM elements and for values that are not positive numbers
+add_test(NAME deck_stabilization_monotone
+  COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:vemcontact> -DDECKS=${VC_DECKS}
+          -DOUT=${CMAKE_CURRENT_BINARY_DIR}/deck-out/stabilization_monotone
+          -P ${VC_DECKS}/stab_monotone.cmake)
+set_tests_properties(deck_stabilization_monotone PROPERTIES LABELS deck)
+vc_deck_test(err_stab_nonpositive ${VC_DECKS}/err_stab_nonpositive.inp 1
+  "err_stab_nonpositive.inp:21: error: STABILIZATION = 0 must be positive.*err_stab_nonpositive.inp:23: error: STABILIZATION = -0.5 must be positive")
+vc_deck_test(err_stab_text ${VC_DECKS}/err_stab_text.inp 1
+  "err_stab_text.inp:17: error: parameter STABILIZATION of [*]SOLID SECTION must be a number, found 'soft'")
+vc_deck_test(err_stab_fem ${VC_DECKS}/err_stab_fem.inp 1
+  "err_stab_fem.inp:17: error: STABILIZATION= on FEM element 1")
+vc_deck_test(err_stab_cpe4 ${VC_DECKS}/err_stab_cpe4.inp 1
+  "err_stab_cpe4.inp:17: error: STABILIZATION= on FEM element 1")
