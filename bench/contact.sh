@@ -4,10 +4,17 @@
 # log line carries its wall time and its factorization time; the ratio of the
 # two for the iterations after the first is the overhead of contact (copy of
 # the matrix, springs, constraints, projection, residual).  Target: <= 1.10.
+# The iteration count and the pattern rebuilds are those of the first step of a
+# curved contact (docs/contact-robustness.md, "Curved contact: the first step").
 #   usage: bench/contact.sh   -> bench/results/contact.csv
+#   VEMCONTACT_EXE=path bench/contact.sh   uses that executable instead of build/
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh Release >/dev/null
+exe=${VEMCONTACT_EXE:-}
+if [ -z "$exe" ]; then
+  bash scripts/build.sh Release >/dev/null
+  exe=./build/vemcontact
+fi
 work=$(mktemp -d)
 mkdir -p bench/results
 csv=bench/results/contact.csv
@@ -16,7 +23,7 @@ for v in h20k h100k; do
   PYTHONPATH=postprocess .venv/bin/python -m vctools.mesh scene bench/hertz_refined.toml -o "$work/" >/dev/null
   mesh=$(ls "$work"/*"$v"*.inp | head -1)
   sed -e "s#meshes/ex2_hertz_1155_vem.inp#$mesh#" inputs/hertz_1155_vem.inp > "$work/bench_$v.inp"
-  ./build/vemcontact -q -o "$work/out" "$work/bench_$v.inp"
+  "$exe" -q -o "$work/out" "$work/bench_$v.inp"
   log=$work/out/bench_$v.log
   # iterations after the first, except those that also rebuilt the pattern and
   # re-ran the symbolic analysis (reported separately: once per model, when the

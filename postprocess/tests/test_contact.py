@@ -121,7 +121,7 @@ def test_blocks_nonmatching_scatter(exe, tmp_path):
     assert 1e-4 < scatter < 0.25
 
 
-@pytest.mark.parametrize("factor", [1e2, 1e4, 1e6, 1e8])
+@pytest.mark.parametrize("factor", [1e0, 1e2, 1e4, 1e6, 1e8])
 def test_penalty_sweep(exe, tmp_path, factor):
     """Penalty K from 1e2 to 1e8 times E/h: the pressure follows the series-spring
     formula at every K (1e-6 relative), the overclosure falls as 1/K, and the
@@ -297,7 +297,7 @@ def test_nonconvergence_keeps_completed_steps(exe, tmp_path):
     assert "nc_0001.vtu" in (tmp_path / "nc.pvd").read_text()
 
 
-@pytest.mark.parametrize("factor", [1e12, 1e18])
+@pytest.mark.parametrize("factor", [4e10, 1e12, 1e16, 1e18])
 def test_extreme_penalty_is_diagnosed(exe, tmp_path, factor):
     """Far beyond any useful penalty (K = 1e12 and 1e18 times E/h) the contact
     system is too ill-conditioned (or loses positive definiteness to round-off):
@@ -310,9 +310,10 @@ def test_extreme_penalty_is_diagnosed(exe, tmp_path, factor):
 
 
 def test_stiff_penalty_warns(exe, tmp_path):
-    """At K = 1e10 E/h the answer is still usable (pressure within 1e-3) but the log
-    warns that accuracy is lost (rcond about 7e-11)."""
-    young, penalty = 1000.0, 1e10 * 1000.0
+    """At K h/E = 1e9 (K = 4e9 E with h = 0.25) the answer is still usable (pressure
+    within 1e-3; measured 7e-7) but the log warns that accuracy is lost (rcond about
+    4e-10); ten times stiffer, the run stops (rcond_stop_penalty, next test)."""
+    young, penalty = 1000.0, 4e9 * 1000.0
     blocks_deck(tmp_path / "w.inp", 4, 4, penalty, young)
     run(exe, tmp_path / "w.inp", tmp_path)
     assert "warning: ill-conditioned system" in (tmp_path / "w.log").read_text()

@@ -105,12 +105,13 @@ def test_fine_nonmatching_interface_converges_fast(exe, tmp_path, interface_mesh
     0.05 rad), so the pairing moves with every solve; with the frozen-pairing stiffness
     alone this took 7 iterations here (and did not converge at 2e5 unknowns).  The
     geometric stiffness makes it a Newton iteration: 1 solve at the undeformed pairing,
-    then quadratic convergence, 3 iterations.  Measured: [3]."""
+    then quadratic convergence: 3 iterations to the residual 1e-8, 4 to the default 1e-10.
+    Measured: [4]."""
     interface_deck(tmp_path / "fs.inp", interface_mesh)
     log = run(exe, tmp_path / "fs.inp", tmp_path)
     its = iterations(log)
     print("finite sliding iterations", its)
-    assert len(its) == 1 and its[0] <= 3
+    assert len(its) == 1 and its[0] <= 4
     fs = read_csv(tmp_path / "fs_contact_pair1_0001.csv")
     assert (fs["STATUS"] == "CLOSED").all()
     # the same interface with the pairing frozen (SMALL SLIDING, one solve): the two

@@ -61,6 +61,11 @@ module vemcontact_contact_active_set
    !> One contact pair's geometry.
    type :: pair_data_t
       integer(ip), allocatable :: seg(:, :)   !< (2, nseg) master segments, element orientation
+      !> the pair's own nodes: the search works on their coordinates only, so that it
+      !> costs O(slave nodes + master segments) whatever the size of the model
+      integer(ip), allocatable :: lnode(:)    !< model node of each local node (the slaves first)
+      integer(ip), allocatable :: lseg(:, :)  !< seg in local numbering
+      integer(ip), allocatable :: lslave(:)   !< the slave nodes in local numbering
       integer :: first = 0                    !< its slave nodes are entries first+1 .. first+nslave
       integer :: nslave = 0
       real(wp) :: radius = 0.0_wp             !< search radius: twice the longest master segment
@@ -95,6 +100,8 @@ module vemcontact_contact_active_set
       procedure :: add_stiffness
       procedure :: add_rhs
       procedure :: forces
+      procedure :: frozen_gaps
+      procedure :: newton
       procedure :: springs
       procedure :: table
       procedure :: max_penetration
@@ -148,6 +155,7 @@ contains
          self%pairs(p)%first = size(all_node)
          self%pairs(p)%nslave = size(node)
          self%nexcluded = self%nexcluded + nex
+         call local_numbering(model%nnode, node, seg, self%pairs(p))
          all_node = [all_node, node]
          all_pair = [all_pair, spread(p, 1, size(node))]
          all_len = [all_len, length]
@@ -167,6 +175,48 @@ contains
                           ': error: the contact pairs have no slave nodes', err_input)
       end if
    end subroutine init
+
+   !> Local numbering of a pair's nodes (slaves first, then the other master nodes).
+   subroutine local_numbering(nnode, node, seg, pd)
+      integer(ip), intent(in) :: nnode
+      integer(ip), intent(in) :: node(:), seg(:, :)
+      type(pair_data_t), intent(inout) :: pd
+      integer(ip), allocatable :: loc(:), buf(:)
+      integer :: i, k, m
+      allocate (loc(nnode), source=0_ip)
+      allocate (buf(size(node) + size(seg)))
+      m = 0
+      do i = 1, size(node)
+         if (loc(node(i)) /= 0) cycle
+         m = m + 1
+         buf(m) = node(i)
+         loc(node(i)) = int(m, ip)
+      end do
+      do k = 1, size(seg, 2)
+         do i = 1, 2
+            if (loc(seg(i, k)) /= 0) cycle
+            m = m + 1
+            buf(m) = seg(i, k)
+            loc(seg(i, k)) = int(m, ip)
+         end do
+      end do
+      pd%lnode = buf(:m)
+      pd%lslave = loc(node)
+      pd%lseg = reshape(loc(reshape(seg, [size(seg)])), shape(seg))
+   end subroutine local_numbering
+
+   !> Current coordinates x + u of a pair's local nodes.
+   pure function local_coordinates(pd, model, u) result(xl)
+      type(pair_data_t), intent(in) :: pd
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      real(wp), allocatable :: xl(:, :)
+      integer :: j
+      allocate (xl(2, size(pd%lnode)))
+      do j = 1, size(pd%lnode)
+         xl(:, j) = model%x(:, pd%lnode(j)) + u(2*pd%lnode(j) - 1:2*pd%lnode(j))
+      end do
+   end function local_coordinates
 
    subroutine allocate_entries(self, n)
       type(contact_state_t), intent(inout) :: self
@@ -218,18 +268,18 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(segment_grid_t) :: grid
       integer(ip), allocatable :: pp(:, :)
-      real(wp), allocatable :: xc(:, :)
+      real(wp), allocatable :: xl(:, :)
       integer :: p
-      xc = model%x + reshape(u, shape(model%x))
       allocate (pairs(2, 0))
       do p = 1, size(self%pairs)
          if (self%pairs(p)%nslave == 0) cycle
          ! twice the search radius: room for the pairing to move without a new pattern
          associate (pd => self%pairs(p))
-            call build_segment_grid(xc, pd%seg, 2.0_wp*search_radius(pd, u), grid, error)
+            xl = local_coordinates(pd, model, u)
+            call build_segment_grid(xl, pd%lseg, 2.0_wp*search_radius(pd, u), grid, error)
             if (allocated(error)) return
-            call contact_graph_pairs(grid, xc, pd%seg, self%node(pd%first + 1:pd%first + pd%nslave), &
-                                     2.0_wp*search_radius(pd, u), pp)
+            call contact_graph_pairs(grid, xl, pd%lseg, pd%lslave, 2.0_wp*search_radius(pd, u), pp)
+            pp = reshape(pd%lnode(reshape(pp, [size(pp)])), shape(pp))
          end associate
          pairs = reshape([pairs, pp], [2, size(pairs, 2) + size(pp, 2)])
       end do
@@ -242,12 +292,11 @@ contains
       real(wp), intent(in) :: u(:)
       type(error_t), allocatable, intent(out) :: error
       type(segment_grid_t) :: grid
-      real(wp), allocatable :: xc(:, :)
+      real(wp), allocatable :: xl(:, :)
       integer(ip), allocatable :: prev(:)
       integer :: p, i, lo, hi
       integer(ip) :: a, b
       real(wp) :: radius
-      xc = model%x + reshape(u, shape(model%x))
       do p = 1, size(self%pairs)
          associate (pd => self%pairs(p))
             if (pd%nslave == 0) cycle
@@ -267,10 +316,11 @@ contains
                cycle
             end if
             radius = search_radius(pd, u)
-            call build_segment_grid(xc, pd%seg, radius, grid, error)
+            xl = local_coordinates(pd, model, u)
+            call build_segment_grid(xl, pd%lseg, radius, grid, error)
             if (allocated(error)) return
             prev = self%iseg(lo:hi)
-            call closest_segments(grid, xc, pd%seg, self%node(lo:hi), radius, self%iseg(lo:hi), &
+            call closest_segments(grid, xl, pd%lseg, pd%lslave, radius, self%iseg(lo:hi), &
                                   self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
             do i = lo, hi
                call keep_previous(i, prev(i - lo + 1))
@@ -304,7 +354,7 @@ contains
          integer, intent(in) :: i
          integer(ip), intent(in) :: a, b
          real(wp) :: f, kg(6, 6), ue(6)
-         self%seglen(i) = length2(xc(:, b) - xc(:, a))
+         self%seglen(i) = length2(current(b) - current(a))
          self%geo_weight(i) = 0.0_wp
          self%geo_rhs(:, i) = 0.0_wp
          if (.not. (self%gap(i) < 0.0_wp .and. self%seglen(i) > 0.0_wp)) return
@@ -329,7 +379,8 @@ contains
          integer :: status
          if (iprev == 0 .or. iprev == self%iseg(i)) return
          associate (sg => self%pairs(self%pair(i))%seg(:, iprev))
-            call project_point_segment(xc(:, self%node(i)), xc(:, sg(1)), xc(:, sg(2)), xi, gap, normal, dist, status)
+            call project_point_segment(current(self%node(i)), current(sg(1)), current(sg(2)), &
+                                       xi, gap, normal, dist, status)
          end associate
          if (status /= seg_ok) return
          if (xi < -pairing_hysteresis .or. xi > 1.0_wp + pairing_hysteresis) return
@@ -339,6 +390,13 @@ contains
          self%gap(i) = gap
          self%normal(:, i) = normal
       end subroutine keep_previous
+
+      !> x + u of model node j
+      pure function current(j) result(xj)
+         integer(ip), intent(in) :: j
+         real(wp) :: xj(2)
+         xj = model%x(:, j) + u(2*j - 1:2*j)
+      end function current
    end subroutine project
 
    !> New active set from the current gaps; returns how many entries changed.
@@ -406,6 +464,33 @@ contains
       end do
    end subroutine forces
 
+   !> Gaps of every entry at displacements u with the current pairing frozen,
+   !> g = g0 + n.A(xi) u (linear in u), for the line search of the driver; entries
+   !> without a partner get huge (they never close along the line).
+   pure subroutine frozen_gaps(self, u, g)
+      class(contact_state_t), intent(in) :: self
+      real(wp), intent(in) :: u(:)
+      real(wp), intent(out) :: g(:)
+      integer :: i
+      integer(ip) :: nodes(3)
+      do i = 1, self%n
+         g(i) = huge(1.0_wp)
+         if (self%iseg(i) == 0) cycle
+         nodes = nodes_of(self, i)
+         g(i) = self%gap0(i) + dot_product(self%normal(:, i), u(2*nodes(1) - 1:2*nodes(1)) - &
+                                           ((1.0_wp - self%xi(i))*u(2*nodes(2) - 1:2*nodes(2)) + &
+                                            self%xi(i)*u(2*nodes(3) - 1:2*nodes(3))))
+      end do
+   end subroutine frozen_gaps
+
+   !> Whether the next solve carries the geometric stiffness (a Newton step on the
+   !> pairing); without it the solve minimizes the penalty energy with the pairing
+   !> frozen, which the driver's line search evaluates.
+   pure logical function newton(self)
+      class(contact_state_t), intent(in) :: self
+      newton = any(self%active .and. self%geo_weight > 0.0_wp)
+   end function newton
+
    !> Closed springs as supports between parts, for the floating-part check.
    function springs(self, model, part) result(s)
       class(contact_state_t), intent(in) :: self
@@ -467,16 +552,18 @@ contains
    end function max_pressure
 
    !> Search radius of a pair at displacements u: twice its longest master segment
-   !> plus twice the largest displacement, since a node that has penetrated cannot
-   !> lie deeper than the two bodies have moved toward each other (a body held by a
-   !> single closed spring in the first iteration can sink far).
+   !> plus twice the largest displacement of the pair's nodes, since a node that has
+   !> penetrated cannot lie deeper than the slave and master nodes have moved toward
+   !> each other (a body held by a single closed spring can sink far).
    pure real(wp) function search_radius(pd, u) result(r)
       type(pair_data_t), intent(in) :: pd
       real(wp), intent(in) :: u(:)
-      integer :: i
+      integer :: j
+      integer(ip) :: i
       real(wp) :: umax
       umax = 0.0_wp
-      do i = 1, size(u)/2
+      do j = 1, size(pd%lnode)
+         i = pd%lnode(j)
          umax = max(umax, hypot(u(2*i - 1), u(2*i)))
       end do
       r = pd%radius + 2.0_wp*umax

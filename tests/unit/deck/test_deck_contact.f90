@@ -103,7 +103,7 @@ contains
                    'contact arrays allocated')
       call t%equal(size(m%surfaces) + size(m%interactions) + size(m%pairs), 0, 'and empty')
       call t%equal(m%controls%max_iterations, 50, 'default MAXIT')
-      call t%close(m%controls%residual_tol, 1.0e-8_wp, tol, 'default TOLERANCE')
+      call t%close(m%controls%residual_tol, 1.0e-10_wp, tol, 'default TOLERANCE')
       call t%check(all(m%steps%procedure == procedure_static), '*STATIC steps')
       call t%equal(size(m%steps), 2, 'two steps in basic.inp')
    end subroutine test_defaults
