@@ -539,7 +539,7 @@ def write_doc(out, mach, path):
          "| sweep | breakdown | what the code does there |", "|---|---|---|",
          "| nu -> 0.5, plane strain | FEM quads and triangles lock: tip deflection 0.27 (Q4) and 0.16 (CST) of "
          "exact at nu = 0.4999 | warning per element set for nu > 0.45 on FEM elements (`element_warnings`, "
-         "needs a call from static.f90); the VEM no longer locks (stabilisation with lambda capped at 2 mu) |",
+         "printed at the start of the run, test postprocess/tests/test_element_warnings.py); the VEM no longer locks (stabilisation with lambda capped at 2 mu) |",
          "| example 1, 2d/b | quads convex (largest angle 168.7 deg) up to 2d/b = 5, where nodes coincide; "
          "tangled beyond | stop, exit 1: 'has a zero-length side: its nodes 1 and 2 coincide', then 'is "
          "self-intersecting: its sides 2-5 and 6-1 cross' |",
@@ -662,7 +662,7 @@ def write_doc(out, mach, path):
           "edges are not collapsed yet). Sides from 1e-10 up are accepted and answer to round-off.", "",
           "## Recommendations", "",
           "- Nearly incompressible plane strain: use the VEM (FORMULATION=VEM; works on quad and triangle "
-          "meshes too). The FEM warning should be shown by the driver (see below).",
+          "meshes too). The FEM sections get a warning at the start of the run.",
           "- FEM quads must be convex; non-convex quads run with the VEM.",
           "- Mesh generation: collapse sides shorter than ~1e-8 of the cell diameter (well above the 1e-10 "
           "rejection) to avoid the stop.",
