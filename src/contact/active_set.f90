@@ -400,17 +400,22 @@ contains
    end subroutine project
 
    !> New active set from the current gaps; returns how many entries changed.
+   !> Entries of `hold` that are active stay active whatever their gap; they are
+   !> counted as changed when their gap says open, so that the caller does not stop
+   !> on them (the driver holds nodes opened by the pairing update alone).
    !> While the active set changes, the next solve keeps the pairing frozen (no
    !> geometric stiffness): far from the solution, as in the first iterations of a
    !> curved contact where a few nodes penetrate deeply, its linearization is poor
    !> and indefinite; once the active set holds, the geometric part makes the
    !> iteration on the pairing a Newton iteration.
-   subroutine update_active(self, nchanged)
+   subroutine update_active(self, nchanged, hold)
       class(contact_state_t), intent(inout) :: self
       integer, intent(out) :: nchanged
+      logical, intent(in), optional :: hold(:)
       logical, allocatable :: new(:)
       new = self%iseg > 0 .and. self%gap <= 0.0_wp
       nchanged = count(new .neqv. self%active)
+      if (present(hold)) new = new .or. (hold .and. self%active .and. self%iseg > 0)
       self%active = new
       if (nchanged > 0) then
          self%geo_weight = 0.0_wp
