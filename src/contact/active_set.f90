@@ -90,6 +90,10 @@ module vemcontact_contact_active_set
       !> weight of the geometric stiffness (0 .. 1, geometric_bound) and its
       !> right-hand side weight * K_geo u at the displacements of the pairing
       real(wp), allocatable :: geo_weight(:), geo_rhs(:, :)
+      !> the driver switches the geometric part off for the rest of a step when a
+      !> Newton step did not lower the residual or lost positive definiteness (then
+      !> the iteration is the frozen-pairing fixed point of session 1)
+      logical :: geometric_off = .false.
       logical, allocatable :: active(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
    contains
@@ -97,6 +101,7 @@ module vemcontact_contact_active_set
       procedure :: graph_pairs
       procedure :: project
       procedure :: update_active
+      procedure :: set_geometric
       procedure :: add_stiffness
       procedure :: add_rhs
       procedure :: forces
@@ -357,6 +362,7 @@ contains
          self%seglen(i) = length2(current(b) - current(a))
          self%geo_weight(i) = 0.0_wp
          self%geo_rhs(:, i) = 0.0_wp
+         if (self%geometric_off) return
          if (.not. (self%gap(i) < 0.0_wp .and. self%seglen(i) > 0.0_wp)) return
          associate (pd => self%pairs(self%pair(i)))
             f = 2.0_wp*self%k(i)*abs(self%gap(i))/self%seglen(i)
@@ -422,6 +428,18 @@ contains
          self%geo_rhs = 0.0_wp
       end if
    end subroutine update_active
+
+   !> Switch the geometric stiffness on or off (off: the weights and right-hand
+   !> sides of the current pairing are cleared at once).
+   subroutine set_geometric(self, on)
+      class(contact_state_t), intent(inout) :: self
+      logical, intent(in) :: on
+      self%geometric_off = .not. on
+      if (.not. on) then
+         self%geo_weight = 0.0_wp
+         self%geo_rhs = 0.0_wp
+      end if
+   end subroutine set_geometric
 
    !> Add k A^T n n^T A of the active springs to `a`; `ok` false when a spring
    !> couples nodes the pattern does not hold (the caller rebuilds the pattern).
