@@ -435,16 +435,17 @@ SUMMARY_TEMPLATE = """\
 ## Notes
 
 - The interface case with Voronoi meshes of 2 × 25 600 cells (about 2·10^5 unknowns,
-  K = 1e12) fails: the active-set iteration diverges (the penetration grows from
-  7.7e-5 to 4.6e-3 over 8 iterations with all slave nodes closed) and stops with
-  "contact iterations cycle" (exit status 4). It is recorded as a failed run above and
-  left for the contact code; the coarser Voronoi meshes and all structured meshes of
-  the same case converge in a few iterations.
-- In the same case the number of active-set iterations grows with the mesh (5-7 at
-  3·10^4 unknowns, 14-26 at 1.3·10^5 for the structured meshes; column "iter."),
-  although every slave node is closed from the first iteration on: the finest interface
-  runs cost 10-16 s where a single factorization costs about 0.5 s. Left for the
-  contact code (the convergence test of the active set at K = 1e12).
+  K = 1e12, K h/E about 10) fails: the active-set iteration does not settle (the
+  penetration jumps from 7.7e-5 to 2.4e-3 at the second iteration, nodes keep opening
+  and closing) and stops after 50 iterations (exit status 4). It is recorded as a failed
+  run above; a known weakness of the contact iteration on this mesh (docs/status.md).
+  The coarser Voronoi meshes converge in 3-4 iterations.
+- Session 2 made the contact iteration a Newton iteration on the pairing
+  (docs/contact-robustness.md): 3-5 iterations where session 1 needed 5-7 at 3·10^4
+  unknowns. On the finest structured VEM quads (1.3·10^5 unknowns) the Newton steps
+  diverge and lose positive definiteness; the code then drops the geometric part for
+  the step and converges as a fixed point (about 40 iterations, column "iter."); FEM quads
+  and triangles of the same size converge in 10 and 5.
 - Small runs (< 0.05 s) are dominated by fixed costs and by the noise of the shared
   machine: their time ratios mean little. The runs of a study take turns on one core;
   other jobs on the machine add noise that the median of the repeats only partly removes.
