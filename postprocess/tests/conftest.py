@@ -1,6 +1,35 @@
+import os
+
 import numpy as np
 import pytest
 import shapely
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def _executable():
+    """The vemcontact under test: VEMCONTACT_EXE (CTest sets it), else a build in the tree."""
+    exe = os.environ.get("VEMCONTACT_EXE")
+    if not exe:
+        for cand in ("build-debug/vemcontact", "build/vemcontact"):
+            if os.path.exists(os.path.join(ROOT, cand)):
+                exe = os.path.join(ROOT, cand)
+                break
+    if not exe or not os.path.exists(exe):
+        pytest.fail("vemcontact executable not found: set VEMCONTACT_EXE or build first")
+    return exe
+
+
+@pytest.fixture(scope="session")
+def exe():
+    """Path of the vemcontact executable under test."""
+    return _executable()
+
+
+@pytest.fixture(scope="session")
+def vemcontact():
+    """The same as `exe` (the name the plot and paper tests use)."""
+    return _executable()
 
 
 def edges_of(m):

@@ -13,12 +13,6 @@ import pytest
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
-@pytest.fixture(scope="module")
-def exe():
-    e = os.environ.get("VEMCONTACT_EXE") or os.path.join(ROOT, "build-debug", "vemcontact")
-    if not os.path.exists(e):
-        pytest.fail("vemcontact executable not found: set VEMCONTACT_EXE")
-    return e
 
 
 def run(exe, deck, out, expect=0):

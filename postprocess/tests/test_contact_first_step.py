@@ -22,12 +22,6 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 P0 = 83.60  # analytical plane-strain Hertz peak pressure of these decks
 
 
-@pytest.fixture(scope="module")
-def exe():
-    e = os.environ.get("VEMCONTACT_EXE") or os.path.join(ROOT, "build-debug", "vemcontact")
-    if not os.path.exists(e):
-        pytest.fail("vemcontact executable not found: set VEMCONTACT_EXE")
-    return e
 
 
 def run(exe, deck, out):

@@ -16,12 +16,6 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 PYTHON_ENV = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "postprocess"))
 
 
-@pytest.fixture(scope="module")
-def exe():
-    e = os.environ.get("VEMCONTACT_EXE") or os.path.join(ROOT, "build-debug", "vemcontact")
-    if not os.path.exists(e):
-        pytest.fail("vemcontact executable not found: set VEMCONTACT_EXE")
-    return e
 
 
 def run(exe, deck, out):

@@ -23,12 +23,6 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 E_DISC = 1.0e3
 
 
-@pytest.fixture(scope="module")
-def exe():
-    e = os.environ.get("VEMCONTACT_EXE") or os.path.join(ROOT, "build-debug", "vemcontact")
-    if not os.path.exists(e):
-        pytest.fail("vemcontact executable not found: set VEMCONTACT_EXE")
-    return e
 
 
 def hertz(exe, out, penalty=None):

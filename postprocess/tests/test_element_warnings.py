@@ -32,12 +32,6 @@ DECK = """*NODE
 """
 
 
-@pytest.fixture(scope="module")
-def exe():
-    path = os.environ.get("VEMCONTACT_EXE")
-    if not path:
-        pytest.skip("VEMCONTACT_EXE not set")
-    return path
 
 
 def run(exe, tmp_path, etype, nu, form=""):

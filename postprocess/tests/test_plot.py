@@ -13,18 +13,6 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
-@pytest.fixture(scope="module")
-def vemcontact():
-    """Path of the built executable (CTest passes it in VEMCONTACT_EXE)."""
-    exe = os.environ.get("VEMCONTACT_EXE")
-    if not exe:
-        for cand in ("build-debug/vemcontact", "build/vemcontact"):
-            if os.path.exists(os.path.join(ROOT, cand)):
-                exe = os.path.join(ROOT, cand)
-                break
-    if not exe or not os.path.exists(exe):
-        pytest.fail("vemcontact executable not found: set VEMCONTACT_EXE or build first")
-    return exe
 
 
 @pytest.fixture(scope="module")

@@ -30,12 +30,6 @@ def _bench():
 cs = _bench()
 
 
-@pytest.fixture(scope="module")
-def exe():
-    e = os.environ.get("VEMCONTACT_EXE") or os.path.join(ROOT, "build-debug", "vemcontact")
-    if not os.path.exists(e):
-        pytest.fail("vemcontact executable not found: set VEMCONTACT_EXE")
-    return e
 
 
 # ---------------------------------------------------------------- contrast
