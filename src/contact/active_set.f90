@@ -311,12 +311,7 @@ contains
                ! the pairing stays that of the undeformed state: only the gaps move,
                ! linearly in u, so the frozen stiffness is exact (no geometric part)
                do i = lo, hi
-                  if (self%iseg(i) == 0) cycle
-                  a = pd%seg(1, self%iseg(i))
-                  b = pd%seg(2, self%iseg(i))
-                  self%gap(i) = self%gap0(i) + dot_product(self%normal(:, i), &
-                                u(2*self%node(i) - 1:2*self%node(i)) - &
-                                ((1.0_wp - self%xi(i))*u(2*a - 1:2*a) + self%xi(i)*u(2*b - 1:2*b)))
+                  if (self%iseg(i) /= 0) self%gap(i) = frozen_gap(self, i, u)
                end do
                cycle
             end if
@@ -343,8 +338,7 @@ contains
                if (abs(self%gap0(i)) <= gap0_roundoff*epsilon(1.0_wp)* &
                    max(maxval(abs(model%x(:, self%node(i)))), maxval(abs(model%x(:, a))), &
                        maxval(abs(model%x(:, b))))) self%gap0(i) = 0.0_wp
-               self%gap(i) = self%gap0(i) + dot_product(self%normal(:, i), u(2*self%node(i) - 1:2*self%node(i)) - &
-                             ((1.0_wp - self%xi(i))*u(2*a - 1:2*a) + self%xi(i)*u(2*b - 1:2*b)))
+               self%gap(i) = frozen_gap(self, i, u)
                if (.not. pd%small_sliding) call geometric_term(i, a, b)
             end do
             pd%paired = .true.
@@ -495,16 +489,25 @@ contains
       real(wp), intent(in) :: u(:)
       real(wp), intent(out) :: g(:)
       integer :: i
-      integer(ip) :: nodes(3)
       do i = 1, self%n
          g(i) = huge(1.0_wp)
-         if (self%iseg(i) == 0) cycle
-         nodes = nodes_of(self, i)
-         g(i) = self%gap0(i) + dot_product(self%normal(:, i), u(2*nodes(1) - 1:2*nodes(1)) - &
-                                           ((1.0_wp - self%xi(i))*u(2*nodes(2) - 1:2*nodes(2)) + &
-                                            self%xi(i)*u(2*nodes(3) - 1:2*nodes(3))))
+         if (self%iseg(i) /= 0) g(i) = frozen_gap(self, i, u)
       end do
    end subroutine frozen_gaps
+
+   !> Gap of entry i with its pairing frozen: g = g0 + n.(u_s - ((1 - xi) u_a + xi u_b)),
+   !> from displacement differences (the reference gap g0 carries the coordinates),
+   !> so that an overclosure of 1e-10 of the coordinates keeps its digits.
+   pure real(wp) function frozen_gap(self, i, u) result(g)
+      type(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      real(wp), intent(in) :: u(:)
+      integer(ip) :: nodes(3)
+      nodes = nodes_of(self, i)
+      g = self%gap0(i) + dot_product(self%normal(:, i), u(2*nodes(1) - 1:2*nodes(1)) - &
+                                     ((1.0_wp - self%xi(i))*u(2*nodes(2) - 1:2*nodes(2)) + &
+                                      self%xi(i)*u(2*nodes(3) - 1:2*nodes(3))))
+   end function frozen_gap
 
    !> Whether the next solve carries the geometric stiffness (a Newton step on the
    !> pairing); without it the solve minimizes the penalty energy with the pairing
