@@ -454,14 +454,21 @@ contains
       real(wp) :: a, b, lo, hi, e0
       integer :: it
       t = 1.0_wp
+      allocate (g0(contact%n), h(contact%n))
+      call contact%frozen_gaps(u0, g0)
+      call contact%frozen_gaps(u1, h)
+      ! E'(1) = sum over the solve's springs open at u1 of -k g(1) (g(1) - g(0)) plus
+      ! sum over the other nodes closed at u1 of k g(1) (g(1) - g(0)): with no new
+      ! contact and every spring closed at u0, E'(1) <= 0 and the full step stands,
+      ! without the two products with K below (every iteration of a settled active set)
+      if (.not. any(contact%active .neqv. g0 <= 0.0_wp) .and. &
+          .not. any(.not. contact%active .and. h < 0.0_wp)) return
       d = merge(0.0_wp, u1 - u0, fixed)
-      allocate (kd(size(d)), ku(size(d)), g0(contact%n), h(contact%n))
+      allocate (kd(size(d)), ku(size(d)))
       call sym_matvec(k, d, kd)
       call sym_matvec(k, u0, ku)
       a = dot_product(d, ku - fext)
       b = dot_product(d, kd)
-      call contact%frozen_gaps(u0, g0)
-      call contact%frozen_gaps(u1, h)
       where (g0 < huge(1.0_wp))
          h = h - g0
       elsewhere
