@@ -11,6 +11,7 @@
 program test_element_extremes
    use vemcontact_kinds, only: wp, ip
    use vemcontact_testing, only: checker_t
+   use vemcontact_linalg_lapack, only: dsyev
    use vemcontact_error, only: error_t
    use vemcontact_model, only: model_t, string_t, plane_strain, form_vem, form_fem
    use vemcontact_material_elastic, only: elastic_matrix
@@ -23,16 +24,6 @@ program test_element_extremes
    use vemcontact_test_polymesh, only: quad_grid, cantilever_two_quads
    implicit none
 
-   interface
-      subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-         use vemcontact_kinds, only: wp
-         character, intent(in) :: jobz, uplo
-         integer, intent(in) :: n, lda, lwork
-         real(wp), intent(inout) :: a(lda, *)
-         real(wp), intent(out) :: w(*), work(*)
-         integer, intent(out) :: info
-      end subroutine dsyev
-   end interface
 
    real(wp), parameter :: pi = 3.14159265358979323846264338327950_wp
    !> Patch test tolerance: K u_lin - f relative to |K| |u|.  Round-off in K is

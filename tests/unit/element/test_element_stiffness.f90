@@ -12,18 +12,9 @@ program test_element_stiffness
    use vemcontact_test_polymesh, only: rng_init, rng_uniform, random_convex_polygon, &
       random_star_polygon, dual_polymesh, hanging_quad_grid
    use vemcontact_testing, only: checker_t
+   use vemcontact_linalg_lapack, only: dsyev
    implicit none
 
-   interface
-      subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-         use vemcontact_kinds, only: wp
-         character, intent(in) :: jobz, uplo
-         integer, intent(in) :: n, lda, lwork
-         real(wp), intent(inout) :: a(lda, *)
-         real(wp), intent(out) :: w(*), work(*)
-         integer, intent(out) :: info
-      end subroutine dsyev
-   end interface
 
    !> Tolerances.  Symmetry: the kernels mirror their upper triangle, so 1e-14
    !> only allows for nothing.  Zero eigenvalues: rounding in K is ~eps*|K|, and
