@@ -11,7 +11,6 @@ import argparse
 import csv
 import json
 import os
-import platform
 import re
 import statistics
 import subprocess
@@ -19,6 +18,8 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(__file__))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from machine_info import describe  # noqa: E402
 import cases      # noqa: E402
 import fields     # noqa: E402
 import meshes     # noqa: E402
@@ -76,22 +77,8 @@ def source_state():
 
 
 def machine():
-    cpu = platform.processor() or ""
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    mem = ""
-    try:
-        kb = int(open("/proc/meminfo").readline().split()[1])
-        mem = f", {kb / 2**20:.0f} GiB"
-    except (OSError, ValueError):
-        pass
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    return f"{os.cpu_count()} cores ({cpu}){mem}, {platform.system()} {platform.release()}", load
+    return describe(), load
 
 
 def main(argv=None):

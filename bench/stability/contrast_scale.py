@@ -26,7 +26,6 @@ The deck builders and run helpers are imported by postprocess/tests/test_stabili
 import argparse
 import csv
 import os
-import platform
 import re
 import subprocess
 import sys
@@ -36,6 +35,8 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench"))
+from machine_info import describe  # noqa: E402
 NU = 0.3
 PRESSURE = 1.0          # applied pressure in the reference (unscaled) decks
 PENALTY_FACTOR = 1.0e3  # K = f E / h (h the element size): overclosure 1e-3 of the soft strain * h
@@ -524,15 +525,7 @@ def _outcome(r):
 
 
 def machine():
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}, Python {platform.python_version()}"
+    return describe()
 
 
 def write_doc(contrast, scale, exe):

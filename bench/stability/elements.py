@@ -32,7 +32,6 @@ import argparse
 import csv
 import math
 import os
-import platform
 import re
 import shutil
 import subprocess
@@ -44,6 +43,8 @@ import scipy.io
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "bench", "accuracy"))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
+from machine_info import describe  # noqa: E402
 import cases   # noqa: E402
 import fields  # noqa: E402
 import meshes  # noqa: E402
@@ -496,15 +497,7 @@ def sweep_short_edges(work):
 
 # ------------------------------------------------------------------ output
 def machine():
-    cpu = platform.processor() or ""
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{os.cpu_count()} cores ({cpu}), {platform.system()} {platform.release()}"
+    return describe()
 
 
 def write_csv(path, rows):

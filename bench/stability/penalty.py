@@ -21,6 +21,7 @@ Writes bench/results/stability_penalty.csv and docs/stability-penalty.md.  Usage
 """
 import csv
 import re
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -147,7 +148,13 @@ def write_doc(rows, h, exe):
     for r in rows:
         by.setdefault(r["case"], []).append(r)
     text = (ROOT / "bench" / "stability" / "penalty.md.in").read_text()
-    text = text.replace("@MACHINE@", cs.machine()).replace("@EXE@", str(exe)).replace("@HERTZ_H@", f"{h:.4g}")
+    try:
+        commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
+                                text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        commit = "unknown"
+    text = text.replace("@MACHINE@", cs.machine()).replace("@EXE@", f"{exe}, source commit {commit}")
+    text = text.replace("@HERTZ_H@", f"{h:.4g}")
     text = text.replace("@BLOCKS_MATCHING@", table(by["blocks 4/4"], "tributary mean error"))
     text = text.replace("@BLOCKS_NONMATCHING@", table(by["blocks 3/5"], "tributary mean error"))
     text = text.replace("@HERTZ@", table(by["hertz 389 vem"], "peak / 83.60 - 1"))
