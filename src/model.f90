@@ -29,6 +29,9 @@ module vemcontact_model
    !> Surface kinds
    integer, parameter, public :: surface_element = 1 !< element sides (TYPE=ELEMENT)
    integer, parameter, public :: surface_node = 2    !< nodes (TYPE=NODE)
+   !> Contact formulations of a pair (contact_pair_t%formulation)
+   integer, parameter, public :: pair_node_to_surface = 1
+   integer, parameter, public :: pair_surface_to_surface = 2
    !> Step procedures
    integer, parameter, public :: procedure_static = 1
    integer, parameter, public :: procedure_geostatic = 2 !< *GEOSTATIC: displacements reset to zero after it
@@ -102,20 +105,29 @@ module vemcontact_model
       type(source_loc_t) :: loc
    end type surface_t
 
-   !> *SURFACE INTERACTION with its *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR:
-   !> contact pressure = penalty * overclosure, no tension offset.
+   !> *SURFACE INTERACTION with its *SURFACE BEHAVIOR: PRESSURE-OVERCLOSURE=LINEAR
+   !> (contact pressure = penalty * overclosure, no tension offset) or HARD (no
+   !> overclosure: the pressure is a Lagrange multiplier).
    type :: interaction_t
       character(len=:), allocatable :: name   !< upper case
-      real(wp) :: penalty = 0.0_wp            !< slope K: pressure per unit overclosure
+      real(wp) :: penalty = 0.0_wp            !< LINEAR: slope K, pressure per unit overclosure
+      logical :: hard = .false.               !< PRESSURE-OVERCLOSURE=HARD
       logical :: has_behavior = .false.
       type(source_loc_t) :: loc
    end type interaction_t
 
-   !> *CONTACT PAIR, TYPE=NODE TO SURFACE: slave (node or element surface) on master (element surface).
+   !> *CONTACT PAIR: slave (node or element surface) on master (element surface).
    type :: contact_pair_t
       integer :: slave = 0                    !< index into model%surfaces
       integer :: master = 0                   !< index into model%surfaces (surface_element)
       integer :: interaction = 0              !< index into model%interactions
+      !> pair_node_to_surface (TYPE=NODE TO SURFACE: the paper's node-to-segment
+      !> contact) or pair_surface_to_surface (TYPE=SURFACE TO SURFACE: each side's
+      !> interface nodes are inserted into the other side's polygons, then node to node)
+      integer :: formulation = 1
+      !> SURFACE TO SURFACE: the (slave node, master node) pairs made by the interface
+      !> node insertion (vemcontact_contact_insertion), one per slave node with a partner
+      integer(ip), allocatable :: partner(:, :)
       !> SMALL SLIDING (CalculiX): the pairing of each slave node (segment, xi, normal)
       !> is found once in the undeformed configuration and kept; otherwise it is
       !> found anew in the deformed configuration at every iteration
@@ -132,6 +144,12 @@ module vemcontact_model
       !> up to 2.3e-3 in the Hertz stresses); 1e-12 reaches the round-off floor of the
       !> dam's joint (docs/contact-robustness.md).
       real(wp) :: residual_tol = 1.0e-10_wp
+      !> scales the internal augmentation stiffness of PRESSURE-OVERCLOSURE=HARD
+      !> (STIFFNESS SCALE FACTOR, Abaqus' name); the converged answer does not depend on it
+      real(wp) :: stiffness_scale = 1.0_wp
+      !> HARD contact has converged when no overclosure exceeds this fraction of the
+      !> local element size (the slave node's tributary length)
+      real(wp) :: overclosure_tol = 1.0e-10_wp
    end type contact_controls_t
 
    !> One *STEP.  Loads follow CalculiX: with OP=MOD (default) a step's entries

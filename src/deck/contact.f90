@@ -8,7 +8,7 @@
 module vemcontact_deck_contact
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, surface_t, interaction_t, contact_pair_t, source_loc_t, &
-                               surface_element, surface_node
+                               surface_element, surface_node, pair_node_to_surface, pair_surface_to_surface
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, pair_ref_t, here, err_here, err_at, &
                                     field, get_real, push_item, loc_str
    use vemcontact_deck_loads, only: field_nodes, field_elems
@@ -243,6 +243,8 @@ contains
    end subroutine read_interaction
 
    !> *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR; data line: K [, sigma_inf, c0].
+   !> PRESSURE-OVERCLOSURE=HARD (Abaqus' meaning: no overclosure, the pressure is a
+   !> Lagrange multiplier) takes no data line.
    !> vemcontact's law is p = K * overclosure, zero at positive clearance: CalculiX's
    !> tension at large clearances (sigma_inf) and its spring-generation clearance (c0)
    !> have no counterpart, so only 0 or blank is accepted for them.
@@ -268,15 +270,19 @@ contains
       select case (po)
       case ('LINEAR')
          continue
-      case ('EXPONENTIAL', 'TABULAR', 'HARD', 'TIED')
+      case ('HARD')
+         call read_hard(p, model, dup)
+         return
+      case ('EXPONENTIAL', 'TABULAR', 'TIED')
          call err_here(p, 'PRESSURE-OVERCLOSURE='//po//' is not supported', &
-                       'vemcontact supports PRESSURE-OVERCLOSURE=LINEAR (penalty: p = K * overclosure)')
+                       'vemcontact supports PRESSURE-OVERCLOSURE=LINEAR (penalty: p = K * overclosure) '// &
+                       'and HARD (no overclosure)')
          call drop_behavior(p, model)
          call skip_data(p)
          return
       case default
          call err_here(p, 'invalid value '//po//' for parameter PRESSURE-OVERCLOSURE of *SURFACE BEHAVIOR', &
-                       'allowed values: LINEAR')
+                       'allowed values: LINEAR, HARD')
          call drop_behavior(p, model)
          call skip_data(p)
          return
@@ -333,6 +339,27 @@ contains
       end do
    end subroutine read_behavior
 
+   !> PRESSURE-OVERCLOSURE=HARD: no data line.
+   subroutine read_hard(p, model, dup)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      logical, intent(in) :: dup
+      logical :: first
+      if (p%cur_inter > 0 .and. .not. dup) then
+         model%interactions(p%cur_inter)%hard = .true.
+         model%interactions(p%cur_inter)%has_behavior = .true.
+      end if
+      first = .true.
+      do
+         call advance(p)
+         if (p%src%kind /= line_data) exit
+         if (first) call err_here(p, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD takes no data line', &
+                                  'HARD contact has no penalty slope: remove the line, or use '// &
+                                  'PRESSURE-OVERCLOSURE=LINEAR with K on the data line')
+         first = .false.
+      end do
+   end subroutine read_hard
+
    !> After a *SURFACE BEHAVIOR that was reported as wrong, count the current interaction as
    !> having one, so that a pair using it does not report it again as missing.
    subroutine drop_behavior(p, model)
@@ -341,29 +368,33 @@ contains
       if (p%cur_inter > 0) model%interactions(p%cur_inter)%has_behavior = .true.
    end subroutine drop_behavior
 
-   !> *CONTACT PAIR, INTERACTION=name, TYPE=NODE TO SURFACE [, SMALL SLIDING]; data lines:
-   !> slave surface, master surface (one pair per line).
+   !> *CONTACT PAIR, INTERACTION=name, TYPE=NODE TO SURFACE|SURFACE TO SURFACE [, SMALL SLIDING];
+   !> data lines: slave surface, master surface (one pair per line).
    subroutine read_contact_pair(p, kw)
       type(deck_parser_t), intent(inout) :: p
       type(keyword_line_t), intent(in) :: kw
       character(len=:), allocatable :: inter, ctype, shown
       logical :: found
-      integer :: nline
+      integer :: nline, formulation
       type(pair_ref_t), allocatable :: t(:)
       type(source_loc_t) :: kwloc
       call before_steps(p, '*CONTACT PAIR')
       kwloc = here(p)
       call get_param(kw, 'INTERACTION', inter, found)
       call get_param(kw, 'TYPE', ctype, found)
-      if (ctype /= 'NODETOSURFACE') then
+      select case (ctype)
+      case ('NODETOSURFACE')
+         formulation = pair_node_to_surface
+      case ('SURFACETOSURFACE')
+         formulation = pair_surface_to_surface
+      case default
          shown = ctype
-         if (ctype == 'SURFACETOSURFACE') shown = 'SURFACE TO SURFACE'
-         call err_here(p, 'TYPE='//shown//' is not supported: vemcontact has node-to-segment contact '// &
-                       '(TYPE=NODE TO SURFACE)', 'write *CONTACT PAIR, INTERACTION='//inter// &
-                       ', TYPE=NODE TO SURFACE')
+         call err_here(p, 'TYPE='//shown//' is not supported', 'write *CONTACT PAIR, INTERACTION='//inter// &
+                       ', TYPE=NODE TO SURFACE (node to segment) or TYPE=SURFACE TO SURFACE (interface nodes '// &
+                       'inserted, then node to node)')
          call skip_data(p)
          return
-      end if
+      end select
       if (has_param(kw, 'ADJUST')) then
          call err_here(p, 'ADJUST is not supported: vemcontact does not move slave nodes onto the master '// &
                        'surface', 'remove ADJUST; the gap or overclosure of the mesh is used as it is')
@@ -391,6 +422,7 @@ contains
             r%master = to_upper(squeeze(field(p, 2)))
             r%interaction = inter
             r%small_sliding = has_param(kw, 'SMALL SLIDING') .or. has_param(kw, 'SMALLSLIDING')
+            r%formulation = formulation
             r%loc = here(p)
          end associate
       end do
@@ -399,8 +431,9 @@ contains
       end if
    end subroutine read_contact_pair
 
-   !> *CONTACT CONTROLS [, MAXIT=n] [, TOLERANCE=r] (vemcontact): active-set iterations per
-   !> step and the relative residual tolerance.  No data lines.
+   !> *CONTACT CONTROLS [, MAXIT=n] [, TOLERANCE=r] [, STIFFNESS SCALE FACTOR=s] (vemcontact):
+   !> active-set iterations per step, the relative residual tolerance and the scale of the
+   !> internal stiffness of HARD contact (Abaqus' name).  No data lines.
    subroutine read_controls(p, model, kw)
       type(deck_parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: model
@@ -433,6 +466,19 @@ contains
                call err_here(p, 'TOLERANCE = '//val//' must satisfy 0 < TOLERANCE < 1', &
                              'it is the residual norm relative to the norm of the external and reaction '// &
                              'forces, e.g. TOLERANCE=1e-8')
+            end if
+         end if
+      end if
+      call get_param(kw, 'STIFFNESSSCALEFACTOR', val, found)
+      if (found) then
+         call parse_real(squeeze(val), tol, stat)
+         if (stat == num_ok) then
+            if (tol >= 1.0e-6_wp .and. tol <= 1.0e6_wp) then
+               model%controls%stiffness_scale = tol
+            else
+               call err_here(p, 'STIFFNESS SCALE FACTOR = '//val//' must lie between 1e-6 and 1e6', &
+                             'it scales the internal stiffness of PRESSURE-OVERCLOSURE=HARD contact, '// &
+                             '1e3 E/h by default; the converged pressures do not depend on it')
             end if
          end if
       end if
@@ -496,7 +542,8 @@ contains
                            'and a data line with the slope K right after *SURFACE INTERACTION')
             end if
             model%pairs(k) = contact_pair_t(slave=islave, master=imaster, interaction=iinter, &
-                                            small_sliding=r%small_sliding, loc=r%loc)
+                                            formulation=r%formulation, small_sliding=r%small_sliding, &
+                                            loc=r%loc)
          end associate
       end do
    contains

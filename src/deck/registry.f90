@@ -77,7 +77,7 @@ module vemcontact_deck_registry
                                       keyword_spec_t('GEOSTATIC', ctx_step, data_optional), &
                                       keyword_spec_t('DSLOAD', ctx_step, data_optional)]
 
-   type(param_spec_t), parameter :: params(32) = [ &
+   type(param_spec_t), parameter :: params(33) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -112,7 +112,9 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_contact_pair, 'ADJUST', par_value, .false., val_path, ''), &
                                     param_spec_t(kw_contact_pair, 'SMALL SLIDING', par_flag, .false., val_name, ''), &
                                     param_spec_t(kw_contact_controls, 'MAXIT', par_value, .false., val_int, ''), &
-                                    param_spec_t(kw_contact_controls, 'TOLERANCE', par_value, .false., val_real, '')]
+                                    param_spec_t(kw_contact_controls, 'TOLERANCE', par_value, .false., val_real, ''), &
+                                   param_spec_t(kw_contact_controls, 'STIFFNESS SCALE FACTOR', par_value, .false., &
+                                                val_real, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
    character(len=24), parameter :: calculix_only(37) = [character(len=24) :: &

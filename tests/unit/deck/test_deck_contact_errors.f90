@@ -6,7 +6,8 @@
 program test_deck_contact_errors
    use vemcontact_testing, only: checker_t
    use vemcontact_error, only: error_t
-   use vemcontact_model, only: model_t
+   use vemcontact_kinds, only: wp
+   use vemcontact_model, only: model_t, pair_surface_to_surface
    use vemcontact_deck_reader, only: read_deck
    implicit none
    type(checker_t) :: t
@@ -38,6 +39,16 @@ program test_deck_contact_errors
    call read_deck(write_deck('sliding', with_block(cb(8, '*CONTACT PAIR,INTERACTION=I,TYPE=NODETOSURFACE,SMALLSLIDING'))), &
                   m, err)
    call t%check(.not. allocated(err), 'SMALL SLIDING (blanks removed) is accepted')
+   call read_deck(write_deck('s2s_hard', with_block([character(len=w) :: block(1:5), &
+                                                     '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD', &
+                                                     '*CONTACT PAIR, INTERACTION=I, TYPE=SURFACE TO SURFACE', &
+                                                     'B, A', '*CONTACT CONTROLS, STIFFNESS SCALE FACTOR=10'])), m, err)
+   call t%check(.not. allocated(err), 'TYPE=SURFACE TO SURFACE with HARD and a stiffness scale is accepted')
+   if (allocated(err)) print '(a)', err%message
+   if (.not. allocated(err)) then
+      call t%check(m%interactions(1)%hard .and. m%pairs(1)%formulation == pair_surface_to_surface .and. &
+                   m%controls%stiffness_scale == 10.0_wp, 'HARD, SURFACE TO SURFACE and the scale are read')
+   end if
 
    ! *SURFACE
    call expect('surf_undef_elem', with_block(cb(2, '5, S1')), 9, 'undefined element 5')
@@ -67,8 +78,12 @@ program test_deck_contact_errors
                '*SURFACE BEHAVIOR must follow a *SURFACE INTERACTION')
    call expect('beh_exp', with_block(cb(6, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL')), 13, &
                'PRESSURE-OVERCLOSURE=EXPONENTIAL is not supported')
-   call expect('beh_hard', with_block(cb(6, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD')), 13, &
-               'vemcontact supports PRESSURE-OVERCLOSURE=LINEAR')
+   call expect('beh_hard', with_block(cb(6, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD')), 14, &
+               'PRESSURE-OVERCLOSURE=HARD takes no data line')
+   call expect('beh_tabular', with_block(cb(6, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR')), 13, &
+               'vemcontact supports PRESSURE-OVERCLOSURE=LINEAR (penalty: p = K * overclosure) and HARD')
+   call expect('scale_bad', with_block(cbi(9, '*CONTACT CONTROLS, STIFFNESS SCALE FACTOR=1e9')), 17, &
+               'STIFFNESS SCALE FACTOR = 1e9 must lie between 1e-6 and 1e6')
    call expect('beh_bad', with_block(cb(6, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LIN')), 13, &
                'invalid value LIN for parameter PRESSURE-OVERCLOSURE')
    call expect('beh_no_po', with_block(cb(6, '*SURFACE BEHAVIOR')), 13, &
@@ -94,9 +109,8 @@ program test_deck_contact_errors
    call expect('inter_data', with_block(cbi(5, '1.')), 13, &
                'unexpected data line: *SURFACE INTERACTION takes no data lines')
    ! *CONTACT PAIR
-   call expect('pair_s2s', with_block(cb(8, '*CONTACT PAIR, INTERACTION=I, TYPE=SURFACE TO SURFACE')), 15, &
-               'TYPE=SURFACE TO SURFACE is not supported: vemcontact has node-to-segment contact '// &
-               '(TYPE=NODE TO SURFACE)')
+   call expect('pair_n2n', with_block(cb(8, '*CONTACT PAIR, INTERACTION=I, TYPE=NODE TO NODE')), 15, &
+               'TYPE=NODETONODE is not supported')
    call expect('pair_no_type', with_block(cb(8, '*CONTACT PAIR, INTERACTION=I')), 15, &
                'missing required parameter TYPE of *CONTACT PAIR')
    call expect('pair_adjust', with_block(cb(8, '*CONTACT PAIR,INTERACTION=I,TYPE=NODETOSURFACE,ADJUST=0.1')), 15, &
