@@ -17,7 +17,7 @@
 module vemcontact_contact_active_set
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
-   use vemcontact_model, only: model_t, location_string
+   use vemcontact_model, only: model_t, contact_pair_t, location_string, pair_surface_to_surface
    use vemcontact_contact_surfaces, only: master_segments, slave_nodes
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
                                         contact_graph_pairs
@@ -58,6 +58,15 @@ module vemcontact_contact_active_set
    !> the first iterations of a curved contact, when one node carries the load.
    real(wp), parameter, public :: geometric_bound = 0.25_wp
 
+   !> Augmentation stiffness of HARD contact, K h / E with h the median master
+   !> segment and E t the smallest modulus times thickness of the pair: the
+   !> Uzawa update lowers the overclosure by about a factor 1 + K h / E per solve
+   !> (only triangular solves while the active set holds), and the system stays far
+   !> from the conditioning limits (docs/contact-formulation.md).  Scaled by
+   !> STIFFNESS SCALE FACTOR on *CONTACT CONTROLS; the converged answer does not
+   !> depend on it.
+   real(wp), parameter, public :: hard_stiffness = 1.0e3_wp
+
    !> One contact pair's geometry.
    type :: pair_data_t
       integer(ip), allocatable :: seg(:, :)   !< (2, nseg) master segments, element orientation
@@ -74,6 +83,15 @@ module vemcontact_contact_active_set
       real(wp) :: stiffness = 0.0_wp
       logical :: small_sliding = .false.      !< pairing fixed at the undeformed state
       logical :: paired = .false.             !< the small-sliding pairing has been made
+      !> SURFACE TO SURFACE: node to node with the partners of the interface node
+      !> insertion; per slave entry a segment that ends at the partner (0: no partner),
+      !> xi = 0 or 1 exactly, and the partner's vertex normal
+      logical :: node_to_node = .false.
+      !> PRESSURE-OVERCLOSURE=HARD: slope is the internal augmentation stiffness, and
+      !> the pressure is the converged multiplier (no overclosure)
+      logical :: hard = .false.
+      integer(ip), allocatable :: nn_seg(:)
+      real(wp), allocatable :: nn_xi(:), nn_normal(:, :)
    end type pair_data_t
 
    type :: contact_state_t
@@ -84,6 +102,14 @@ module vemcontact_contact_active_set
       real(wp), allocatable :: length(:)       !< undeformed tributary length
       real(wp), allocatable :: thick(:)
       real(wp), allocatable :: k(:)            !< spring stiffness K * length * thick
+      !> normal force of the augmented Lagrangian (HARD pairs; 0 for LINEAR): an entry
+      !> pushes with N = max(0, lambda - k g), so that lambda is the contact force once
+      !> the gap has closed to zero
+      real(wp), allocatable :: lambda(:)
+      !> normal force of each entry as the solution balances it (set_balanced): the
+      !> normal component of K u - f_ext at the slave node, which the elastic body
+      !> transmits; what CPRESS reports
+      real(wp), allocatable :: balanced(:)
       integer(ip), allocatable :: iseg(:)      !< chosen segment (index into its pair's seg), 0 if none
       real(wp), allocatable :: xi(:), gap(:), gap0(:), normal(:, :)
       real(wp), allocatable :: seglen(:)       !< current length of the chosen segment
@@ -107,6 +133,11 @@ module vemcontact_contact_active_set
       procedure :: forces
       procedure :: frozen_gaps
       procedure :: newton
+      procedure :: has_hard
+      procedure :: augment
+      procedure :: normal_force
+      procedure :: set_balanced
+      procedure :: linear_forces
       procedure :: springs
       procedure :: table
       procedure :: max_penetration
@@ -156,7 +187,15 @@ contains
          end do
          self%pairs(p)%slope = model%interactions(model%pairs(p)%interaction)%penalty
          self%pairs(p)%stiffness = pair_stiffness(model, seg_elem, node)
+         if (model%interactions(model%pairs(p)%interaction)%hard .and. size(node) > 0) then
+            self%pairs(p)%hard = .true.
+            self%pairs(p)%slope = hard_stiffness*model%controls%stiffness_scale*self%pairs(p)%stiffness/ &
+                                  (median_length(model, seg)*maxval(thick, mask=thick > 0.0_wp))
+         end if
          self%pairs(p)%small_sliding = model%pairs(p)%small_sliding
+         if (model%pairs(p)%formulation == pair_surface_to_surface) then
+            call node_partners(model, model%pairs(p), node, seg, self%pairs(p))
+         end if
          self%pairs(p)%first = size(all_node)
          self%pairs(p)%nslave = size(node)
          self%nexcluded = self%nexcluded + nex
@@ -180,6 +219,79 @@ contains
                           ': error: the contact pairs have no slave nodes', err_input)
       end if
    end subroutine init
+
+   !> Median length of the segments seg(:, k) = (a, b).
+   function median_length(model, seg) result(h)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: seg(:, :)
+      real(wp) :: h
+      real(wp), allocatable :: l(:)
+      integer :: k, j
+      real(wp) :: t
+      allocate (l(size(seg, 2)))
+      do k = 1, size(seg, 2)
+         l(k) = length2(model%x(:, seg(2, k)) - model%x(:, seg(1, k)))
+      end do
+      ! insertion sort: set-up work, once per pair
+      do k = 2, size(l)
+         t = l(k)
+         j = k - 1
+         do while (j >= 1)
+            if (l(j) <= t) exit
+            l(j + 1) = l(j)
+            j = j - 1
+         end do
+         l(j + 1) = t
+      end do
+      h = l((size(l) + 1)/2)
+   end function median_length
+
+   !> The fixed node-to-node pairing of a SURFACE TO SURFACE pair: each slave node's
+   !> partner from the interface node insertion, as the end xi = 0 or 1 of a master
+   !> segment, with the normal of the master surface at the partner (the normalized
+   !> sum of the unit normals of the segments that meet there: on a straight side,
+   !> where inserted nodes lie, that side's normal; at a vertex of a curved master a
+   !> direction between its two sides).
+   subroutine node_partners(model, pair, node, seg, pd)
+      type(model_t), intent(in) :: model
+      type(contact_pair_t), intent(in) :: pair
+      integer(ip), intent(in) :: node(:), seg(:, :)
+      type(pair_data_t), intent(inout) :: pd
+      integer(ip), allocatable :: partner(:), seg_at(:)
+      real(wp), allocatable :: vn(:, :)
+      real(wp) :: t(2), l
+      integer :: k, i, j
+      integer(ip) :: m
+      pd%node_to_node = .true.
+      pd%small_sliding = .true.
+      allocate (partner(model%nnode), source=0_ip)
+      if (allocated(pair%partner)) then
+         do k = 1, size(pair%partner, 2)
+            partner(pair%partner(1, k)) = pair%partner(2, k)
+         end do
+      end if
+      allocate (vn(2, model%nnode), source=0.0_wp)
+      allocate (seg_at(model%nnode), source=0_ip)
+      do k = 1, size(seg, 2)
+         t = model%x(:, seg(2, k)) - model%x(:, seg(1, k))
+         l = length2(t)
+         do j = 1, 2
+            vn(:, seg(j, k)) = vn(:, seg(j, k)) + [t(2), -t(1)]/l
+            if (seg_at(seg(j, k)) == 0) seg_at(seg(j, k)) = k
+         end do
+      end do
+      allocate (pd%nn_seg(size(node)), source=0_ip)
+      allocate (pd%nn_xi(size(node)), source=0.0_wp)
+      allocate (pd%nn_normal(2, size(node)), source=0.0_wp)
+      do i = 1, size(node)
+         m = partner(node(i))
+         if (m == 0) cycle
+         if (seg_at(m) == 0) cycle
+         pd%nn_seg(i) = seg_at(m)
+         pd%nn_xi(i) = merge(0.0_wp, 1.0_wp, seg(1, seg_at(m)) == m)
+         pd%nn_normal(:, i) = vn(:, m)/length2(vn(:, m))
+      end do
+   end subroutine node_partners
 
    !> Local numbering of a pair's nodes (slaves first, then the other master nodes).
    subroutine local_numbering(nnode, node, seg, pd)
@@ -234,6 +346,7 @@ contains
       allocate (self%seglen(n), self%geo_weight(n), source=0.0_wp)
       allocate (self%geo_rhs(6, n), source=0.0_wp)
       allocate (self%active(n), source=.false.)
+      allocate (self%lambda(n), source=0.0_wp)
    end subroutine allocate_entries
 
    !> Smallest E * thickness over the master segments' elements and the elements
@@ -307,6 +420,10 @@ contains
             if (pd%nslave == 0) cycle
             lo = pd%first + 1
             hi = pd%first + pd%nslave
+            if (pd%node_to_node .and. .not. pd%paired) then
+               call pair_node_to_node(p, lo, hi)
+               cycle
+            end if
             if (pd%small_sliding .and. pd%paired) then
                ! the pairing stays that of the undeformed state: only the gaps move,
                ! linearly in u, so the frozen stiffness is exact (no geometric part)
@@ -329,22 +446,45 @@ contains
                if (self%iseg(i) == 0) cycle
                a = pd%seg(1, self%iseg(i))
                b = pd%seg(2, self%iseg(i))
-               ! reference gap with this pairing frozen: g = g0 + n.A u.  The gap is
-               ! evaluated in this form (from displacement differences) rather than from
-               ! the current coordinates: an overclosure of 1e-10 of the coordinates
-               ! would otherwise lose most of its digits to cancellation
-               self%gap0(i) = dot_product(self%normal(:, i), model%x(:, self%node(i)) - &
-                                          ((1.0_wp - self%xi(i))*model%x(:, a) + self%xi(i)*model%x(:, b)))
-               if (abs(self%gap0(i)) <= gap0_roundoff*epsilon(1.0_wp)* &
-                   max(maxval(abs(model%x(:, self%node(i)))), maxval(abs(model%x(:, a))), &
-                       maxval(abs(model%x(:, b))))) self%gap0(i) = 0.0_wp
-               self%gap(i) = frozen_gap(self, i, u)
+               call reference_gap(i, a, b)
                if (.not. pd%small_sliding) call geometric_term(i, a, b)
             end do
             pd%paired = .true.
          end associate
       end do
    contains
+      !> The fixed pairing of a SURFACE TO SURFACE pair (node_partners) and its gaps.
+      subroutine pair_node_to_node(p, lo, hi)
+         integer, intent(in) :: p, lo, hi
+         integer :: i
+         do i = lo, hi
+            self%iseg(i) = self%pairs(p)%nn_seg(i - lo + 1)
+            self%geo_weight(i) = 0.0_wp
+            self%geo_rhs(:, i) = 0.0_wp
+            if (self%iseg(i) == 0) cycle
+            self%xi(i) = self%pairs(p)%nn_xi(i - lo + 1)
+            self%normal(:, i) = self%pairs(p)%nn_normal(:, i - lo + 1)
+            call reference_gap(i, self%pairs(p)%seg(1, self%iseg(i)), self%pairs(p)%seg(2, self%iseg(i)))
+         end do
+         self%pairs(p)%paired = .true.
+      end subroutine pair_node_to_node
+
+      !> g0 = n.(X_s - X_xi) of entry i on segment a -> b, and its gap at u.
+      subroutine reference_gap(i, a, b)
+         integer, intent(in) :: i
+         integer(ip), intent(in) :: a, b
+         ! reference gap with this pairing frozen: g = g0 + n.A u.  The gap is
+         ! evaluated in this form (from displacement differences) rather than from
+         ! the current coordinates: an overclosure of 1e-10 of the coordinates
+         ! would otherwise lose most of its digits to cancellation
+         self%gap0(i) = dot_product(self%normal(:, i), model%x(:, self%node(i)) - &
+                                    ((1.0_wp - self%xi(i))*model%x(:, a) + self%xi(i)*model%x(:, b)))
+         if (abs(self%gap0(i)) <= gap0_roundoff*epsilon(1.0_wp)* &
+             max(maxval(abs(model%x(:, self%node(i)))), maxval(abs(model%x(:, a))), &
+                 maxval(abs(model%x(:, b))))) self%gap0(i) = 0.0_wp
+         self%gap(i) = frozen_gap(self, i, u)
+      end subroutine reference_gap
+
       !> Weight and right-hand side of the geometric stiffness of entry i paired
       !> with the segment a -> b: the pairing follows u, and without this part of
       !> the Jacobian the iteration on the pairing is a fixed point whose rate
@@ -413,7 +553,8 @@ contains
       integer, intent(out) :: nchanged
       logical, intent(in), optional :: hold(:)
       logical, allocatable :: new(:)
-      new = self%iseg > 0 .and. self%gap <= 0.0_wp
+      ! N = lambda - k g >= 0: g <= 0 for LINEAR pairs (lambda = 0)
+      new = self%iseg > 0 .and. self%lambda - self%k*self%gap >= 0.0_wp
       nchanged = count(new .neqv. self%active)
       if (present(hold)) new = new .or. (hold .and. self%active .and. self%iseg > 0)
       self%active = new
@@ -455,7 +596,7 @@ contains
       end do
    end subroutine add_stiffness
 
-   !> Right-hand side of the active springs: -k g0 A^T n, plus K_geo u_p (u_p the
+   !> Right-hand side of the active springs: (lambda - k g0) A^T n, plus K_geo u_p (u_p the
    !> displacements of the pairing), so that a solve is a Newton step:
    !> (K + K_c + K_geo) u = f_ext - f_c(u_p) + (K_c + K_geo) u_p.
    subroutine add_rhs(self, f)
@@ -464,22 +605,109 @@ contains
       integer :: i
       do i = 1, self%n
          if (.not. self%active(i)) cycle
-         call scatter(f, nodes_of(self, i), -self%k(i)*self%gap0(i)* &
+         call scatter(f, nodes_of(self, i), (self%lambda(i) - self%k(i)*self%gap0(i))* &
                       matmul(self%normal(:, i), relative_map(self%xi(i))) + self%geo_rhs(:, i))
       end do
    end subroutine add_rhs
 
-   !> Contact forces k g A^T n of the active springs at the current pairing and gaps.
+   !> Contact forces -N A^T n of the active springs at the current pairing and gaps,
+   !> N = max(0, lambda - k g) (k <-g> for LINEAR pairs).
    subroutine forces(self, f)
       class(contact_state_t), intent(in) :: self
       real(wp), intent(inout) :: f(:)
       integer :: i
       do i = 1, self%n
          if (.not. self%active(i)) cycle
-         call scatter(f, nodes_of(self, i), self%k(i)*min(self%gap(i), 0.0_wp)* &
+         call scatter(f, nodes_of(self, i), -self%normal_force(i)* &
                       matmul(self%normal(:, i), relative_map(self%xi(i))))
       end do
    end subroutine forces
+
+   !> The forces (k g(u) - lambda) A^T n of the active springs with the pairing frozen,
+   !> g(u) = g0 + n.A u: the contact part of the matrix-vector product of the
+   !> current linear system minus its right-hand side, evaluated from the gaps so that
+   !> the stiff springs contribute k times a small number rather than a small
+   !> difference of large ones (the driver's iterative refinement).
+   subroutine linear_forces(self, u, f)
+      class(contact_state_t), intent(in) :: self
+      real(wp), intent(in) :: u(:)
+      real(wp), intent(inout) :: f(:)
+      integer :: i
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         call scatter(f, nodes_of(self, i), (self%k(i)*frozen_gap(self, i, u) - self%lambda(i))* &
+                      matmul(self%normal(:, i), relative_map(self%xi(i))))
+      end do
+   end subroutine linear_forces
+
+   !> Normal force N = max(0, lambda - k g) of entry i (0 when inactive).
+   pure real(wp) function normal_force(self, i) result(f)
+      class(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      f = 0.0_wp
+      if (self%active(i)) f = max(0.0_wp, self%lambda(i) - self%k(i)*self%gap(i))
+   end function normal_force
+
+   !> The normal force of each active entry that the solution balances, from
+   !> r = K u - f_ext (the force the contact exerts on each node): n . r at the slave
+   !> node, where that node takes part in no other active entry and none of its dofs
+   !> is fixed (so that r there is this entry's force alone); the spring's own force
+   !> N = max(0, lambda - k g) elsewhere.  The spring force is K times an overclosure
+   !> that is a small difference of displacements and loses digits like the penalty
+   !> grows; r is the elastic body's own force, accurate to the round-off of the
+   !> stresses, and it is the force that the displacements are in equilibrium with.
+   subroutine set_balanced(self, model, r, fixed)
+      class(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: r(:)
+      logical, intent(in) :: fixed(:)
+      integer, allocatable :: uses(:)
+      integer(ip) :: nodes(3), s
+      integer :: i
+      allocate (uses(model%nnode), source=0)
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         nodes = nodes_of(self, i)
+         uses(nodes(1)) = uses(nodes(1)) + 1
+         if (self%xi(i) /= 1.0_wp) uses(nodes(2)) = uses(nodes(2)) + 1
+         if (self%xi(i) /= 0.0_wp) uses(nodes(3)) = uses(nodes(3)) + 1
+      end do
+      if (.not. allocated(self%balanced)) allocate (self%balanced(self%n))
+      do i = 1, self%n
+         self%balanced(i) = self%normal_force(i)
+         if (.not. self%active(i)) cycle
+         s = self%node(i)
+         if (uses(s) /= 1 .or. fixed(2*s - 1) .or. fixed(2*s)) cycle
+         self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))
+      end do
+   end subroutine set_balanced
+
+   !> Whether any pair has PRESSURE-OVERCLOSURE=HARD.
+   pure logical function has_hard(self)
+      class(contact_state_t), intent(in) :: self
+      integer :: p
+      has_hard = .false.
+      do p = 1, size(self%pairs)
+         has_hard = has_hard .or. (self%pairs(p)%hard .and. self%pairs(p)%nslave > 0)
+      end do
+   end function has_hard
+
+   !> Uzawa update of the HARD entries, lambda <- max(0, lambda - k g), after a solve
+   !> whose active set held; `overclosure` returns the largest overclosure of the HARD
+   !> entries before the update, relative to their tributary length (the local
+   !> element size), 0 when none overclose.
+   subroutine augment(self, overclosure)
+      class(contact_state_t), intent(inout) :: self
+      real(wp), intent(out) :: overclosure
+      integer :: i
+      overclosure = 0.0_wp
+      do i = 1, self%n
+         if (.not. self%pairs(self%pair(i))%hard .or. self%iseg(i) == 0) cycle
+         if (self%active(i)) overclosure = max(overclosure, -self%gap(i)/self%length(i))
+         self%lambda(i) = max(0.0_wp, self%lambda(i) - self%k(i)*self%gap(i))
+         if (.not. self%active(i)) self%lambda(i) = 0.0_wp
+      end do
+   end subroutine augment
 
    !> Gaps of every entry at displacements u with the current pairing frozen,
    !> g = g0 + n.A(xi) u (linear in u), for the line search of the driver; entries
@@ -554,7 +782,11 @@ contains
             tab%cpress(i) = 0.0_wp
          else
             tab%copen(i) = self%gap(i)
-            tab%cpress(i) = merge(self%pairs(self%pair(i))%slope*max(-self%gap(i), 0.0_wp), 0.0_wp, self%active(i))
+            if (allocated(self%balanced)) then
+               tab%cpress(i) = self%balanced(i)/(self%length(i)*self%thick(i))
+            else
+               tab%cpress(i) = self%normal_force(i)/(self%length(i)*self%thick(i))
+            end if
          end if
       end do
    end function table
@@ -567,13 +799,13 @@ contains
       m = max(m, 0.0_wp)
    end function max_penetration
 
-   !> Largest contact pressure K * overclosure of the active springs.
+   !> Largest contact pressure N / (length * thickness) of the active springs.
    pure real(wp) function max_pressure(self) result(m)
       class(contact_state_t), intent(in) :: self
       integer :: i
       m = 0.0_wp
       do i = 1, self%n
-         if (self%active(i)) m = max(m, self%pairs(self%pair(i))%slope*max(-self%gap(i), 0.0_wp))
+         if (self%active(i)) m = max(m, self%normal_force(i)/(self%length(i)*self%thick(i)))
       end do
    end function max_pressure
 

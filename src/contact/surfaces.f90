@@ -15,7 +15,7 @@ module vemcontact_contact_surfaces
    implicit none
    private
 
-   public :: master_segments, slave_nodes
+   public :: master_segments, slave_nodes, slave_edges
 
    ! A pair lists at most this many offending entities before "... and N more".
    integer, parameter :: max_listed = 20
@@ -204,6 +204,77 @@ contains
          thick(m) = ltsum(i)/lsum(i)
       end do
    end subroutine slave_nodes
+
+   !> Sides of the slave face of `pair` in element orientation: edge(:, k) = (a, b),
+   !> side edge_side(k) of element edge_elem(k).  Element surface: its facets.  Node
+   !> surface: the mesh boundary edges (used by one element) whose ends are both in the
+   !> set, or one in the set and the other a node of the master surface (the edge to a
+   !> joint tip that the set leaves out).
+   pure subroutine slave_edges(model, pair, edge, edge_elem, edge_side, error)
+      type(model_t), intent(in) :: model
+      type(contact_pair_t), intent(in) :: pair
+      integer(ip), allocatable, intent(out) :: edge(:, :), edge_elem(:)
+      integer, allocatable, intent(out) :: edge_side(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer(ip), allocatable :: node_ptr(:), node_elem(:), be(:, :), bel(:)
+      integer, allocatable :: bside(:)
+      logical, allocatable :: in_slave(:), in_master(:)
+      integer(ip) :: e, p, q, p0, nn, m
+      integer :: k, j
+      call check_surface_index(model, pair%slave, 'slave', error)
+      if (allocated(error)) return
+      call check_surface_index(model, pair%master, 'master', error)
+      if (allocated(error)) return
+      associate (surf => model%surfaces(pair%slave), ms => model%surfaces(pair%master))
+         if (surf%kind == surface_element) then
+            call check_facets(model, surf, surface_where(model, surf), error)
+            if (allocated(error)) return
+            allocate (edge(2, size(surf%elem)), edge_elem(size(surf%elem)), edge_side(size(surf%elem)))
+            do k = 1, size(surf%elem)
+               edge(:, k) = side_nodes(model, surf%elem(k), surf%side(k))
+            end do
+            edge_elem = surf%elem
+            edge_side = surf%side
+            return
+         end if
+         allocate (in_slave(model%nnode), in_master(model%nnode), source=.false.)
+         if (allocated(surf%nodes)) in_slave(surf%nodes) = .true.
+         if (ms%kind == surface_element) then
+            call check_facets(model, ms, surface_where(model, ms), error)
+            if (allocated(error)) return
+            do k = 1, size(ms%elem)
+               in_master(side_nodes(model, ms%elem(k), ms%side(k))) = .true.
+            end do
+         end if
+         call node_elements(model, node_ptr, node_elem)
+         allocate (be(2, 16), bel(16), bside(16))
+         m = 0
+         ! every side of an element that touches the set, once: from its start node
+         do e = 1, model%nelem
+            p0 = model%elem_ptr(e)
+            nn = model%elem_ptr(e + 1) - p0
+            do j = 0, int(nn) - 1
+               p = model%elem_conn(p0 + j)
+               q = model%elem_conn(p0 + mod(j + 1, int(nn)))
+               if (.not. ((in_slave(p) .and. (in_slave(q) .or. in_master(q))) .or. &
+                          (in_slave(q) .and. in_master(p)))) cycle
+               if (other_element(model, node_ptr, node_elem, e, p, q) /= 0) cycle
+               m = m + 1
+               if (m > size(bel)) then
+                  be = reshape([be, spread(0_ip, 1, 2*size(bel))], [2, 2*size(bel)])
+                  bel = [bel, spread(0_ip, 1, size(bel))]
+                  bside = [bside, spread(0, 1, size(bside))]
+               end if
+               be(:, m) = [p, q]
+               bel(m) = e
+               bside(m) = j + 1
+            end do
+         end do
+         edge = be(:, :m)
+         edge_elem = bel(:m)
+         edge_side = bside(:m)
+      end associate
+   end subroutine slave_edges
 
    pure subroutine check_surface_index(model, isurf, role, error)
       type(model_t), intent(in) :: model

@@ -28,6 +28,13 @@ module vemcontact_driver_linear
 
    public :: linear_system_t
 
+   !> What the contact part of the matrix depends on.
+   type :: contact_key_t
+      logical, allocatable :: active(:)
+      integer(ip), allocatable :: iseg(:)
+      real(wp), allocatable :: xi(:), normal(:, :), geo_weight(:)
+   end type contact_key_t
+
    integer, parameter, public :: ordering_auto = 0, ordering_metis = 1, ordering_cholmod = 2
    !> CHOLMOD's reciprocal condition estimate below which results lose accuracy
    !> (relative errors of about eps/rcond: 1e-7 and worse) and a warning is logged,
@@ -78,7 +85,12 @@ module vemcontact_driver_linear
       logical :: refactorized = .false.           !< whether the last solve_state factorized
       integer :: ordering = 0
       integer :: iterations = 0                   !< contact iterations of the last solve_state
+      integer :: factorizations = 0               !< numeric factorizations of the last solve_state
       integer :: pattern_builds = 0
+      !> contact matrix of the current factor: active set, pairing and geometric
+      !> weights, so that an iteration that changes none of them (the augmentation of
+      !> HARD contact, a small-sliding pairing that holds) only solves again
+      type(contact_key_t) :: factored_key
    contains
       procedure :: setup
       procedure :: solve_state
@@ -175,6 +187,7 @@ contains
       real(wp) :: t0
       logical :: warned
       self%iterations = 0
+      self%factorizations = 0
       self%t_search = 0
       if (present(contact)) then
          if (contact%n > 0) then
@@ -204,11 +217,13 @@ contains
          call self%solver%factorize(self%kb, error)
          if (allocated(error)) return
          self%t_factorize = wall_time() - t0
+         self%factorizations = 1
          warned = .false.
          call check_conditioning(self%solver%rcond(), 0.0_wp, .false., warned, error, log)
          if (allocated(error)) return
          self%factored_fixed = fixed
          self%factored = .true.
+         self%factored_key = contact_key_t()
       else
          ! same constraints: only the right-hand side changes (kb is already reduced,
          ! so the known values are moved with the unreduced stiffness)
@@ -236,8 +251,8 @@ contains
       type(logger_t), intent(in), optional :: log
       logical, allocatable :: fixed(:), history(:, :), hold(:), held(:)
       real(wp), allocatable :: fext(:), f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:)
-      real(wp) :: t0, rel, scale, kmax, t_iter, t_fact, t_srch, step, rc_min, gap_tol
-      logical :: warned, cut, newton_solve
+      real(wp) :: t0, rel, scale, kmax, t_iter, t_fact, t_srch, step, rc_min, gap_tol, overclosure
+      logical :: warned, cut, newton_solve, same_matrix
       real(wp) :: rel_prev
       integer :: it, nchanged, maxit, j, nrise
       logical :: ok
@@ -257,6 +272,7 @@ contains
       allocate (history(contact%n, 0:maxit), gaps(contact%n, 0:maxit), gfrozen(contact%n))
       allocate (held(contact%n), source=.false.)
       rc_min = 1.0_wp
+      self%refactorized = .false.
       rel_prev = huge(1.0_wp)
       nrise = 0
       call contact%set_geometric(.true.)
@@ -295,29 +311,39 @@ contains
          if (allocated(error)) return
          call constrain_rhs(self%kb, fixed, st%prescribed, f)
          call constrain_matrix(self%kb, fixed)
-         t0 = wall_time()
          newton_solve = contact%newton()
-         call self%solver%factorize(self%kb, error)
-         if (allocated(error) .and. newton_solve) then
-            ! the indefinite geometric part tipped the matrix: go on without it
-            deallocate (error)
-            call geometric_off('the matrix with it is not positive definite')
-            cycle
+         ! the matrix of the current factor: solve again without factorizing
+         same_matrix = self%factored
+         if (same_matrix) same_matrix = .not. any(fixed .neqv. self%factored_fixed)
+         if (same_matrix) same_matrix = same_key(self%factored_key, contact)
+         t_fact = 0.0_wp
+         if (.not. same_matrix) then
+            t0 = wall_time()
+            call self%solver%factorize(self%kb, error)
+            if (allocated(error) .and. newton_solve) then
+               ! the indefinite geometric part tipped the matrix: go on without it
+               deallocate (error)
+               self%factored = .false.
+               call geometric_off('the matrix with it is not positive definite')
+               cycle
+            end if
+            if (allocated(error)) then
+               ! a penalty stiff enough to swamp the elastic stiffness loses positive
+               ! definiteness to round-off: say so in the model's terms
+               if (any(contact%active)) error%message = 'error: with the closed contact springs the '// &
+                  'stiffness matrix is not positive definite in floating point ('//error%message//')'// &
+                  new_line('a')//conditioning_hint(maxval(contact%k, mask=contact%active)/kmax)
+               return
+            end if
+            t_fact = wall_time() - t0
+            self%factorizations = self%factorizations + 1
+            call check_conditioning(self%solver%rcond(), maxval(contact%k, mask=contact%active, dim=1)/kmax, &
+                                    any(contact%active), warned, error, log)
+            if (allocated(error)) return
+            if (self%solver%rcond() > 0.0_wp) rc_min = min(rc_min, self%solver%rcond())
+            self%t_factorize = self%t_factorize + t_fact
+            self%factored_key = key_of(contact)
          end if
-         if (allocated(error)) then
-            ! a penalty stiff enough to swamp the elastic stiffness loses positive
-            ! definiteness to round-off: say so in the model's terms
-            if (any(contact%active)) error%message = 'error: with the closed contact springs the '// &
-               'stiffness matrix is not positive definite in floating point ('//error%message//')'// &
-               new_line('a')//conditioning_hint(maxval(contact%k, mask=contact%active)/kmax)
-            return
-         end if
-         t_fact = wall_time() - t0
-         call check_conditioning(self%solver%rcond(), maxval(contact%k, mask=contact%active, dim=1)/kmax, &
-                                 any(contact%active), warned, error, log)
-         if (allocated(error)) return
-         if (self%solver%rcond() > 0.0_wp) rc_min = min(rc_min, self%solver%rcond())
-         self%t_factorize = self%t_factorize + t_fact
          ! the start of the step, with this state's prescribed values
          u0 = merge(st%prescribed, u, fixed)
          t0 = wall_time()
@@ -330,7 +356,15 @@ contains
             return
          end if
          self%factored = .true.
-         self%refactorized = .true.
+         ! one step of iterative refinement with the residual evaluated from the gaps:
+         ! the backward error of the factorization is eps times the stiffest spring,
+         ! which with K h/E = 1e7 leaves 2e-8 in the contact forces; the refined
+         ! solve brings it to the round-off of the elastic forces
+         if (.not. newton_solve) then
+            call refine(u)
+            if (allocated(error)) return
+         end if
+         self%refactorized = self%refactorized .or. .not. same_matrix
          self%factored_fixed = fixed
          ! a solve without the geometric term minimizes the frozen-pairing energy with
          ! the current springs: cut it when it overshoots into new contact
@@ -376,7 +410,16 @@ contains
          if (present(log)) call log%say(trim(buf))
          history(:, it) = contact%active
          gaps(:, it) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
-         if (nchanged == 0 .and. rel <= model%controls%residual_tol) return
+         if (nchanged == 0 .and. rel <= model%controls%residual_tol) then
+            if (contact%has_hard()) then
+               ! HARD: the augmented Lagrangian's Uzawa update; converged once the solve
+               ! left no overclosure beyond the tolerance
+               call contact%augment(overclosure)
+               if (overclosure > model%controls%overclosure_tol) cycle
+            end if
+            call contact%set_balanced(model, ku - fext, fixed)
+            return
+         end if
          ! Newton steps that raise the residual three times in a row are far from the
          ! quadratic regime and are given up for the frozen-pairing fixed point, which
          ! converges (slowly).  On a fine structured non-matching interface at K h/E ~ 10
@@ -422,12 +465,63 @@ contains
          ' iterations (relative residual ', rel, ')'
       call fatal_error(error, trim(buf)//'; raise MAXIT on *CONTACT CONTROLS or check the penalty', err_solver)
    contains
+      !> u <- u + A^-1 (b - A u) with b - A u = f_ext - K u - f_c(u), the contact
+      !> forces of the frozen pairing from the gaps (contact_state_t%linear_forces).
+      subroutine refine(u)
+         real(wp), intent(inout) :: u(:)
+         real(wp), allocatable :: du(:)
+         call sym_matvec(self%k, u, ku)
+         fc = 0.0_wp
+         call contact%linear_forces(u, fc)
+         r = fext - ku - fc
+         where (fixed) r = 0.0_wp
+         allocate (du(size(u)))
+         t0 = wall_time()
+         call self%solver%solve(r, du, error)
+         if (allocated(error)) return
+         self%t_solve = self%t_solve + (wall_time() - t0)
+         u = u + du
+      end subroutine refine
+
       subroutine geometric_off(why)
          character(len=*), intent(in) :: why
          call contact%set_geometric(.false.)
          if (present(log)) call log%say('        (geometric contact stiffness off for this step: '//why//')')
       end subroutine geometric_off
    end subroutine solve_contact
+
+   !> The contact matrix key of the current state.
+   pure function key_of(contact) result(key)
+      type(contact_state_t), intent(in) :: contact
+      type(contact_key_t) :: key
+      key%active = contact%active
+      key%iseg = contact%iseg
+      key%xi = contact%xi
+      key%normal = contact%normal
+      key%geo_weight = contact%geo_weight
+   end function key_of
+
+   !> Whether the contact part of the matrix is that of `key`: same active set and,
+   !> for the active entries, the same pairing and geometric weights.
+   pure logical function same_key(key, contact) result(same)
+      type(contact_key_t), intent(in) :: key
+      type(contact_state_t), intent(in) :: contact
+      integer :: i
+      same = allocated(key%active)
+      if (.not. same) return
+      same = size(key%active) == contact%n
+      if (.not. same) return
+      same = all(key%active .eqv. contact%active)
+      if (.not. same) return
+      do i = 1, contact%n
+         if (.not. contact%active(i)) cycle
+         ! the geometric part also depends on the gaps: a Newton matrix is never reused
+         same = key%iseg(i) == contact%iseg(i) .and. key%xi(i) == contact%xi(i) .and. &
+                all(key%normal(:, i) == contact%normal(:, i)) .and. key%geo_weight(i) == 0.0_wp .and. &
+                contact%geo_weight(i) == 0.0_wp
+         if (.not. same) return
+      end do
+   end function same_key
 
    !> Length t in (0, 1] of the step from u0 to u1, the solve with the pairing
    !> frozen and the springs of u0's active set, on the penalty energy
@@ -457,6 +551,12 @@ contains
       allocate (g0(contact%n), h(contact%n))
       call contact%frozen_gaps(u0, g0)
       call contact%frozen_gaps(u1, h)
+      ! HARD entries push with max(0, lambda - k g) = k <-(g - lambda/k)>: the energy
+      ! of the augmented Lagrangian is that of the penalty with the gaps shifted
+      where (g0 < huge(1.0_wp) .and. contact%k > 0.0_wp)
+         g0 = g0 - contact%lambda/contact%k
+         h = h - contact%lambda/contact%k
+      end where
       ! E'(1) = sum over the solve's springs open at u1 of -k g(1) (g(1) - g(0)) plus
       ! sum over the other nodes closed at u1 of k g(1) (g(1) - g(0)): with no new
       ! contact and every spring closed at u0, E'(1) <= 0 and the full step stands,
