@@ -334,3 +334,68 @@ def test_small_sliding(exe, tmp_path):
     assert abs(np.sum(ss["CPRESS"][o] * trib) / np.sum(trib) / p - 1) < 1e-3
     # the two pairings differ by the lateral sliding only: a few percent here
     assert np.max(np.abs(ss["CPRESS"] - fs["CPRESS"])) / p < 0.05
+
+
+# ---------------------------------------------------------------- slip
+def test_slip_of_a_sliding_block(exe, tmp_path):
+    """CSLIP of matching blocks pressed together (top at -delta) whose upper block
+    is shifted sideways through its top-left corner (the only node held in x in
+    that block), so that it slides on the frictionless interface.  Step 1
+    (*GEOSTATIC) presses and shifts by d1 and reports zero slip (displacements
+    relative to its end, as U); step 2 shifts by d more and reports a slip of d at
+    every slave node.
+
+    Sign: the master segments are the S3 sides (node 3 -> node 4) of the lower
+    block's counter-clockwise quads, so t = (-1, 0), and a slave node that moves
+    by +d in x relative to the master has CSLIP = -d.  The shift (0.007 in all)
+    keeps the right-most slave node within the pairing hysteresis of the last
+    master segment (5 % of 0.25), so every slave node stays closed and paired.
+
+    Tolerance: the slip is d up to the elastic deformation of the blocks.  Shifted
+    off the master nodes, node-to-segment contact does not transmit a uniform
+    pressure (it varies by 5 % here), so the two faces' lateral Poisson
+    displacements differ a little; they scale with the pressure, i.e. with delta
+    (measured: 1.3e-2 delta at delta = 1e-2, 1e-3 and 1e-5: 1.2e-4, 1.3e-5,
+    1.3e-7).  A small delta = 1e-5 keeps the interface closed (CPRESS about 5e-3)
+    and the deviation bounded by the whole lateral expansion of a block,
+    nu delta / 2 over its unit width: 1.5e-6, 3.75e-4 of d (measured 1.3e-7).
+    A wrong sign, a slip of the total rather than the reported displacements
+    (0.007) or a nonzero geostatic slip fail by far more.
+
+    The values of the HDF5 file, the CSV and the contact VTU (read with meshio)
+    must be the same numbers (the CSV has 17 significant digits: exact)."""
+    import meshio
+
+    young, nu, penalty, delta, d1, d = 1000.0, 0.3, 1.0e5, 1.0e-5, 0.003, 0.004
+    nx, ny = 4, 2
+    *_, first_upper, _ = grid(nx, ny, 0.0, 0.0, 1.0, 1.0, 1, 1)
+    corner = grid(nx, ny, 0.0, 1.0, 1.0, 1.0, first_upper, 0)[5][0]    # top-left node of the upper block
+    deck = tmp_path / "slip.inp"
+    blocks_deck(deck, nx, nx, penalty, young, delta, ny,
+                steps=[f"*BOUNDARY\nTOP, 2, 2, {-delta!r}\n{corner}, 1, 1, {d1!r}\n",
+                       f"*BOUNDARY\n{corner}, 1, 1, {d1 + d!r}\n"])
+    deck.write_text(deck.read_text().replace("*STATIC", "*GEOSTATIC", 1))
+    run(exe, deck, tmp_path)
+
+    tangent_x = -1.0
+    for step, expected in ((1, 0.0), (2, tangent_x * d)):
+        c = read_csv(tmp_path / f"slip_contact_pair1_{step:04d}.csv")
+        assert list(c.dtype.names) == ["node", "x", "y", "COPEN", "CPRESS", "CSLIP", "STATUS"]
+        assert len(c) == nx + 1 and (c["STATUS"] == "CLOSED").all() and (c["CPRESS"] > 0).all()
+        if step == 1:
+            # the geostatic step's displacements are the reference: exactly zero
+            assert (c["CSLIP"] == 0.0).all()
+        else:
+            err = np.max(np.abs(c["CSLIP"] - expected))
+            print(f"slip of the sliding block: max |CSLIP + d| {err:.2e} ({err / d:.2e} of d)")
+            assert err < nu * delta / 2
+        with h5py.File(tmp_path / "slip.h5") as f:
+            g = f[f"steps/{step:04d}/contact/pair_1"]
+            assert g["CSLIP"].dtype == np.float64 and g["CSLIP"].shape == (len(c),)
+            assert np.array_equal(g["node_ids"][()], c["node"])
+            assert np.array_equal(g["CSLIP"][()], c["CSLIP"])
+        v = meshio.read(tmp_path / f"slip_contact_{step:04d}.vtu")
+        ids = np.asarray(v.point_data["NODE_ID"]).ravel()
+        assert np.array_equal(np.sort(ids), np.sort(c["node"]))
+        assert np.array_equal(np.asarray(v.point_data["CSLIP"]).ravel()[np.argsort(ids)],
+                              c["CSLIP"][np.argsort(c["node"])])

@@ -22,7 +22,7 @@ module vemcontact_contact_active_set
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
                                         contact_graph_pairs
    use vemcontact_contact_geometry, only: relative_map, contact_stiffness, contact_geometric_stiffness, &
-                                          project_point_segment, seg_ok, length2
+                                          project_point_segment, seg_ok, length2, contact_slip
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_driver_supports, only: spring_t
@@ -763,23 +763,30 @@ contains
       end do
    end function springs
 
-   !> Results of every slave node: COPEN = gap, CPRESS = K * overclosure.
-   function table(self, model) result(tab)
+   !> Results of every slave node: COPEN = gap, CPRESS = K * overclosure, CSLIP =
+   !> t.(u_s - u_xi) in the displacements `u` with the unit tangent t of the paired
+   !> segment (contact_slip); a node without a segment gets CSLIP = 0.
+   function table(self, model, u) result(tab)
       class(contact_state_t), intent(in) :: self
       type(model_t), intent(in) :: model
+      !> displacements to report the slip in, (u_x, u_y) per node: the step's
+      !> reported ones (relative to the end of a geostatic step)
+      real(wp), intent(in) :: u(:)
       type(contact_table_t) :: tab
+      integer(ip) :: nodes(3)
       integer :: i
       tab%node = self%node
       tab%node_id = model%node_id(self%node)
       tab%x = model%x(:, self%node)
       tab%pair = self%pair
-      allocate (tab%copen(self%n), tab%cpress(self%n), tab%status(self%n))
+      allocate (tab%copen(self%n), tab%cpress(self%n), tab%cslip(self%n), tab%status(self%n))
       do i = 1, self%n
          tab%status(i) = merge(1, 0, self%active(i))
          if (self%iseg(i) == 0) then
             ! no master segment within the search radius: the gap is at least the radius
             tab%copen(i) = self%pairs(self%pair(i))%radius
             tab%cpress(i) = 0.0_wp
+            tab%cslip(i) = 0.0_wp
          else
             tab%copen(i) = self%gap(i)
             if (allocated(self%balanced)) then
@@ -787,6 +794,10 @@ contains
             else
                tab%cpress(i) = self%normal_force(i)/(self%length(i)*self%thick(i))
             end if
+            nodes = nodes_of(self, i)
+            tab%cslip(i) = contact_slip(self%xi(i), self%normal(:, i), &
+                                        [u(2*nodes(1) - 1:2*nodes(1)), u(2*nodes(2) - 1:2*nodes(2)), &
+                                         u(2*nodes(3) - 1:2*nodes(3))])
          end if
       end do
    end function table

@@ -10,6 +10,8 @@
 !> The penalty energy 1/2 k <-g>**2 gives the force f = k g A^T n (g < 0) and,
 !> with n and xi frozen, the stiffness k A^T n n^T A (the paper's Eq. 3.13);
 !> contact_geometric_stiffness is the rest of the exact Hessian of the energy.
+!> The tangential part of the relative displacement, tau.(u_s - u_xi) with the
+!> unit tangent tau = t/l, is the slip CSLIP (contact_slip).
 module vemcontact_contact_geometry
    use vemcontact_kinds, only: wp
    implicit none
@@ -17,7 +19,7 @@ module vemcontact_contact_geometry
 
    public :: project_point_segment, relative_map, contact_force, contact_stiffness
    public :: contact_geometric_stiffness
-   public :: contact_energy, contact_pressure, segment_is_degenerate, length2
+   public :: contact_energy, contact_pressure, contact_slip, segment_is_degenerate, length2
 
    !> project_point_segment status: a proper segment
    integer, parameter, public :: seg_ok = 0
@@ -166,4 +168,14 @@ contains
       real(wp), intent(in) :: penalty, gap
       p = penalty*max(-gap, 0.0_wp)
    end function contact_pressure
+
+   !> Slip (CSLIP) of a slave node against the point xi of its master segment:
+   !> tau.(u_s - u_xi) = tau.A(xi) u with u = [u_s; u_a; u_b] (dof order of
+   !> relative_map) and tau = (-n_y, n_x) = t/l the unit tangent a -> b, recovered
+   !> from the outward normal n = (t_y, -t_x)/l.  Positive when the slave node moves
+   !> along a -> b relative to the master; zero for rigid translations.
+   pure real(wp) function contact_slip(xi, normal, u) result(s)
+      real(wp), intent(in) :: xi, normal(2), u(6)
+      s = dot_product([-normal(2), normal(1)], matmul(relative_map(xi), u))
+   end function contact_slip
 end module vemcontact_contact_geometry

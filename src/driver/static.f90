@@ -150,7 +150,7 @@ contains
          if (allocated(error)) return
          if (contact%n > 0) then
             ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per pair
-            tab = contact%table(model)
+            tab = contact%table(model, u_out)
             write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
             call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, error)
             if (allocated(error)) return
@@ -164,7 +164,7 @@ contains
                call h5%write_contact(istep, ip_, pack(tab%node_id, tab%pair == ip_), &
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
-                                     pack(tab%status, tab%pair == ip_), error)
+                                     pack(tab%cslip, tab%pair == ip_), pack(tab%status, tab%pair == ip_), error)
                if (allocated(error)) return
             end do
             write (buf, '(2x,a,i0,a,i0,a,es12.4,a,es12.4)') 'contact: ', count(contact%active), ' of ', contact%n, &

@@ -2,8 +2,10 @@
 !> the slave nodes (vertex cells), so that ParaView shows them beside the mesh.
 !> Columns/fields: node id, coordinates (undeformed), COPEN (normal gap, positive
 !> open, negative = penetration), CPRESS (contact pressure, positive in
-!> compression: penalty force / (tributary length * thickness)), STATUS (1 closed,
-!> 0 open), PAIR (pair number).
+!> compression: penalty force / (tributary length * thickness)), CSLIP (slip:
+!> tangential displacement of the slave node relative to its master point, along
+!> the master segment's direction a -> b; 0 without a master segment), STATUS
+!> (1 closed, 0 open), PAIR (pair number).
 module vemcontact_output_contact
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io
@@ -20,6 +22,7 @@ module vemcontact_output_contact
       real(wp), allocatable :: x(:, :)        !< (2, n) undeformed coordinates
       real(wp), allocatable :: copen(:)
       real(wp), allocatable :: cpress(:)
+      real(wp), allocatable :: cslip(:)
       integer, allocatable :: status(:)       !< 1 closed, 0 open
       integer, allocatable :: pair(:)
       integer(ip), allocatable :: node(:)     !< internal node index (for the driver)
@@ -40,12 +43,12 @@ contains
          call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
          return
       end if
-      write (unit, '(a)', iostat=ios) 'node,x,y,COPEN,CPRESS,STATUS'
+      write (unit, '(a)', iostat=ios) 'node,x,y,COPEN,CPRESS,CSLIP,STATUS'
       do k = 1, size(tab%node_id)
          if (tab%pair(k) /= ipair) cycle
          if (ios /= 0) exit
-         write (unit, '(i0,4(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
-            tab%copen(k), tab%cpress(k), trim(merge('CLOSED', 'OPEN  ', tab%status(k) == 1))
+         write (unit, '(i0,5(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
+            tab%copen(k), tab%cpress(k), tab%cslip(k), trim(merge('CLOSED', 'OPEN  ', tab%status(k) == 1))
       end do
       close (unit)
       if (ios /= 0) then
@@ -55,7 +58,7 @@ contains
       call replace_file(path//'.tmp', path, error)
    end subroutine write_contact_csv
 
-   !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, STATUS, PAIR, NODE_ID.
+   !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, CSLIP, STATUS, PAIR, NODE_ID.
    subroutine write_contact_vtu(path, tab, error)
       character(len=*), intent(in) :: path
       type(contact_table_t), intent(in) :: tab
@@ -81,6 +84,7 @@ contains
                //'<PointData>'//nl, ios)
       call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios)
       call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios)
+      call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios)
       ibuf = int(tab%status, ip)
       call put_array(unit, 'type="'//itype//'" Name="STATUS"', as_bytes(ibuf), ios)
       ibuf = int(tab%pair, ip)

@@ -2,7 +2,8 @@
 
 One place for the parsing of our own files (docs/output-format.md):
 
-* ``JOB_contact_pairK_NNNN.csv``: slave node, x, y, COPEN, CPRESS, STATUS;
+* ``JOB_contact_pairK_NNNN.csv``: slave node, x, y, COPEN, CPRESS, CSLIP, STATUS
+  (columns found by name; CSLIP is not read);
 * ``JOB.log``: one line per active-set iteration (active nodes, changed, residual,
   largest penetration, largest pressure, times) under a ``step NAME`` line;
 * ``JOB.h5``: mesh, element formulation and the displacements of each step.

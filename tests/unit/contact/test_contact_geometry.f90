@@ -1,12 +1,13 @@
 !> Node-to-segment kinematics and the penalty element: projection and gap on
 !> known geometry, A(xi) on rigid motions, stiffness against finite differences
-!> of the force, force as the gradient of the penalty energy.
+!> of the force, force as the gradient of the penalty energy, the slip (CSLIP) on
+!> known motions.
 program test_contact_geometry
    use vemcontact_kinds, only: wp
    use vemcontact_testing, only: checker_t
    use vemcontact_contact_geometry, only: project_point_segment, relative_map, contact_force, &
                                           contact_stiffness, contact_energy, contact_pressure, &
-                                          contact_geometric_stiffness, seg_ok, seg_degenerate
+                                          contact_geometric_stiffness, contact_slip, seg_ok, seg_degenerate
    implicit none
    type(checker_t) :: t
    real(wp) :: xa(2), xb(2), tt(2), nn(2), xs(2), xi, g, n(2), d, l
@@ -81,6 +82,27 @@ program test_contact_geometry
    end do
    call t%close(dot_product(n, matmul(relative_map(xi), u)), 0.0_wp, 0.0_wp, &
                 'normal relative displacement of a rotation', atol=1.0e-14_wp*maxval(abs(u)))
+
+   ! ---- slip (CSLIP) tau.(u_s - u_xi) on the 3-4-5 segment, tau = (0.6, 0.8): the
+   ! tangent comes from the normal that the projection returns.  Data are O(1), so
+   ! the results are exact to a few ulps: 1e-14 absolute.
+   call project_point_segment(xa + 0.3_wp*5.0_wp*tt + 2.0_wp*nn, xa, xb, xi, g, n, d, st)
+   u = [1.5_wp*tt, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
+   call t%close(contact_slip(xi, n, u), 1.5_wp, 1.0e-14_wp, 'slip: slave along a -> b')
+   u = [0.0_wp, 0.0_wp, 0.7_wp*tt, 0.7_wp*tt]
+   call t%close(contact_slip(xi, n, u), -0.7_wp, 1.0e-14_wp, 'slip: master along a -> b')
+   u = [0.0_wp, 0.0_wp, 2.0_wp*tt, 0.0_wp, 0.0_wp]
+   call t%close(contact_slip(xi, n, u), -(1.0_wp - xi)*2.0_wp, 1.0e-14_wp, 'slip: node a alone, weight 1 - xi')
+   u = [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 2.0_wp*tt]
+   call t%close(contact_slip(xi, n, u), -xi*2.0_wp, 1.0e-14_wp, 'slip: node b alone, weight xi')
+   u = [-0.4_wp*nn, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
+   call t%close(contact_slip(xi, n, u), 0.0_wp, 0.0_wp, 'slip: normal motion', atol=1.0e-15_wp)
+   u = [0.3_wp, -1.7_wp, 0.3_wp, -1.7_wp, 0.3_wp, -1.7_wp]
+   call t%close(contact_slip(xi, n, u), 0.0_wp, 0.0_wp, 'slip: rigid translation', atol=1.0e-15_wp)
+   ! reversing the segment reverses the tangent and so the sign
+   call project_point_segment(xa + 0.3_wp*5.0_wp*tt - 2.0_wp*nn, xb, xa, xi, g, n, d, st)
+   u = [1.5_wp*tt, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
+   call t%close(contact_slip(xi, n, u), -1.5_wp, 1.0e-14_wp, 'slip: reversed segment b -> a')
 
    ! ---- force and stiffness
    k = 3.0e4_wp
