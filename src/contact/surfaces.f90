@@ -81,8 +81,10 @@ contains
    !> `length` and thickness `thick` (k_s = K * length * thick).
    !> Element surface: the facets' end nodes, each facet giving half its length
    !> to each end.  Node surface: the mesh boundary edges (used by one element)
-   !> with both ends in the set, half to each end, thickness from that edge's
-   !> element.  A node fed by elements of different thickness gets the
+   !> with both ends in the set, or one end in the set and the other a node of
+   !> the master surface outside the set (the tip shared by the faces of a
+   !> joint, which a mesher leaves out), half to each end, thickness from that
+   !> edge's element.  A node fed by elements of different thickness gets the
    !> length-weighted mean, so that length*thick = sum of (l/2)*t_e exactly.
    !> Nodes that are also nodes of the master surface (a joint tip, nodes shared
    !> by bonded bodies) are dropped and counted in `nexcluded`: a node cannot
@@ -101,7 +103,7 @@ contains
       integer(ip) :: i, p, q, e, n, m, nbad
       integer :: k, j
       integer(ip) :: ab(2)
-      real(wp) :: l, te
+      real(wp) :: l
       character(len=:), allocatable :: where
 
       nexcluded = 0
@@ -151,19 +153,23 @@ contains
                end if
                in_slave(surf%nodes) = .true.
                call node_elements(model, node_ptr, node_elem)
-               ! every boundary edge is side p -> q of exactly one element, so it is
-               ! met once when looking at the side that starts at p
+               ! A boundary edge of the face joins two nodes of the set, or a node of
+               ! the set and a node of the master surface left out of it (the tip
+               ! shared by the two faces of a joint).  Every boundary edge is side
+               ! a -> b of exactly one element: from each node p of the set, the side
+               ! p -> q is taken when q is in the set or on the master, the side
+               ! q -> p only when q is on the master and not in the set (otherwise it
+               ! is taken from q), so each edge is counted once.
                do k = 1, size(surf%nodes)
                   p = surf%nodes(k)
                   do j = node_ptr(p), node_ptr(p + 1) - 1
                      e = node_elem(j)
                      q = next_in_element(model, e, p)
-                     if (.not. in_slave(q)) cycle
-                     if (other_element(model, node_ptr, node_elem, e, p, q) /= 0) cycle
-                     l = length2(model%x(:, q) - model%x(:, p))
-                     te = model%elem_thick(e)
-                     lsum([p, q]) = lsum([p, q]) + 0.5_wp*l
-                     ltsum([p, q]) = ltsum([p, q]) + 0.5_wp*l*te
+                     if (in_slave(q) .or. in_master(q)) &
+                        call add_boundary_edge(model, node_ptr, node_elem, e, p, q, lsum, ltsum)
+                     q = previous_in_element(model, e, p)
+                     if (in_master(q) .and. .not. in_slave(q)) &
+                        call add_boundary_edge(model, node_ptr, node_elem, e, q, p, lsum, ltsum)
                   end do
                end do
             end if
@@ -330,6 +336,35 @@ contains
       ab(1) = model%elem_conn(p0 + k - 1)
       ab(2) = model%elem_conn(p0 + mod(k, n))
    end function side_nodes
+
+   !> If side a -> b of element e is a mesh boundary edge (no other element
+   !> has it), half its length goes to each end, weighted by e's thickness in ltsum.
+   pure subroutine add_boundary_edge(model, node_ptr, node_elem, e, a, b, lsum, ltsum)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: node_ptr(:), node_elem(:), e, a, b
+      real(wp), intent(inout) :: lsum(:), ltsum(:)
+      real(wp) :: l
+      if (other_element(model, node_ptr, node_elem, e, a, b) /= 0) return
+      l = length2(model%x(:, b) - model%x(:, a))
+      lsum([a, b]) = lsum([a, b]) + 0.5_wp*l
+      ltsum([a, b]) = ltsum([a, b]) + 0.5_wp*l*model%elem_thick(e)
+   end subroutine add_boundary_edge
+
+   !> The node before p in element e (counter-clockwise).
+   pure integer(ip) function previous_in_element(model, e, p) result(q)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: e, p
+      integer(ip) :: p0, n, k
+      p0 = model%elem_ptr(e)
+      n = model%elem_ptr(e + 1) - p0
+      q = 0
+      do k = 0, n - 1
+         if (model%elem_conn(p0 + k) == p) then
+            q = model%elem_conn(p0 + mod(k + n - 1, n))
+            return
+         end if
+      end do
+   end function previous_in_element
 
    !> The node after p in element e (counter-clockwise).
    pure integer(ip) function next_in_element(model, e, p) result(q)

@@ -1,6 +1,7 @@
 !> Slave tributary lengths and master segments from model surfaces: element
 !> surfaces on uniform and graded lines, node surfaces on a mesh boundary with
-!> a corner, exclusion of nodes shared with the master, outward normals of a
+!> a corner and along a joint that ends at an interior tip shared with the
+!> master, exclusion of nodes shared with the master, outward normals of a
 !> square's four sides, and the errors (isolated slave node, interior master
 !> side, zero-length master side).
 program test_contact_surfaces
@@ -104,6 +105,62 @@ program test_contact_surfaces
       call t%check(index(error%message, 'slave node 108 ') > 0, 'error names the isolated node by its id')
       call t%check(index(error%message, 'SLAVE') > 0, 'error names the surface')
    end if
+
+   ! ---- node surface along a joint ending at an interior tip: 4 x 2 quads on
+   ! [0,4] x [0,2], column i = 1 moved to x = 0.7; the joint runs along y = 1
+   ! from the left edge (0,1) to the tip (2,1), node 8.  Its nodes (0,1) = 6 and
+   ! (0.7,1) = 7 are duplicated as 16 and 17 for the upper elements 5 and 6; the
+   ! tip is shared.  Lower face: sides 3 of elements 1 and 2, 7 -> 6 and 8 -> 7
+   ! (the edge to the tip starts at the tip); upper face: sides 1 of elements
+   ! 5 and 6, 16 -> 17 and 17 -> 8 (the edge to the tip ends at the tip).
+   call quad_grid(4, 2, 0.0_wp, 0.0_wp, 4.0_wp, 2.0_wp, 0.0_wp, 1, x, ptr, conn)
+   x(1, [2, 7, 12]) = 0.7_wp
+   x = reshape([x, x(:, 6), x(:, 7)], [2, 17])
+   conn(17:24) = [16_ip, 17_ip, 12_ip, 11_ip, 17_ip, 8_ip, 13_ip, 12_ip]
+   call make_model(x, ptr, conn, 1.0_wp, 0.3_wp, plane_strain, form_vem, 1.0_wp, model)
+   model%elem_thick(1:2) = [1.5_wp, 2.5_wp]
+   ! the mesher's slave set: the lower face without the tip; master: the upper face
+   ! every edge of the face gives half its length to each end; the tip's half of
+   ! the edge 7-8 (0.65) stays with the tip, which carries no spring
+   call set_node_surface(model, [6_ip, 7_ip], [5_ip, 6_ip], [1, 1])
+   call slave_nodes(model, pair, node, length, thick, nexcl, error)
+   call t%check(.not. allocated(error), 'joint tip, lower face: no error')
+   call t%equal(size(node), 2, 'joint tip, lower face: 2 slave nodes')
+   call t%equal(int(nexcl), 0, 'joint tip, lower face: the tip is not in the set')
+   ! a few roundings of lengths 0.7 and 1.3: 1e-15 relative
+   call t%close(length(1), 0.35_wp, 1.0e-15_wp, 'joint tip, lower face: mouth node, half its edge')
+   call t%close(length(2), 0.5_wp*(0.7_wp + 1.3_wp), 1.0e-15_wp, &
+                'joint tip, lower face: node next to the tip has half of the edge to the tip')
+   call t%close(sum(length) + 0.65_wp, 2.0_wp, 1.0e-15_wp, &
+                'joint tip, lower face: with the tip''s half edge, the lengths sum to the face length')
+   call t%close(length(2)*thick(2), 0.35_wp*1.5_wp + 0.65_wp*2.5_wp, 1.0e-15_wp, &
+                'joint tip, lower face: thickness of the edge to the tip from its element')
+   ! the same face with the tip written in the set: dropped, nothing counted twice
+   call set_node_surface(model, [6_ip, 7_ip, 8_ip], [5_ip, 6_ip], [1, 1])
+   call slave_nodes(model, pair, node, length, thick, nexcl, error)
+   call t%check(.not. allocated(error), 'joint tip in the set: no error')
+   call t%equal(int(nexcl), 1, 'joint tip in the set: excluded')
+   call t%equal(size(node), 2, 'joint tip in the set: 2 slave nodes')
+   call t%close(length(2), 1.0_wp, 1.0e-15_wp, 'joint tip in the set: the edge to the tip counted once')
+   call t%close(sum(length) + 0.65_wp, 2.0_wp, 1.0e-15_wp, &
+                'joint tip in the set: with the tip''s half edge, the lengths sum to the face length')
+   ! the upper face as slave (nodes 16, 17), the lower face as master
+   call set_node_surface(model, [16_ip, 17_ip], [1_ip, 2_ip], [3, 3])
+   call slave_nodes(model, pair, node, length, thick, nexcl, error)
+   call t%check(.not. allocated(error), 'joint tip, upper face: no error')
+   call t%equal(size(node), 2, 'joint tip, upper face: 2 slave nodes')
+   call t%close(length(1), 0.35_wp, 1.0e-15_wp, 'joint tip, upper face: mouth node, half its edge')
+   call t%close(length(2), 1.0_wp, 1.0e-15_wp, &
+                'joint tip, upper face: node next to the tip has half of the edge to the tip')
+   call t%close(sum(length) + 0.65_wp, 2.0_wp, 1.0e-15_wp, &
+                'joint tip, upper face: with the tip''s half edge, the lengths sum to the face length')
+   ! the element surfaces of the same faces give the same lengths
+   call set_surfaces(model, [1_ip, 2_ip], [3, 3], [5_ip, 6_ip], [1, 1])
+   call slave_nodes(model, pair, node, length, thick, nexcl, error)
+   call t%check(.not. allocated(error), 'joint tip, element surface: no error')
+   call t%equal(int(nexcl), 1, 'joint tip, element surface: the tip excluded')
+   call t%close(length(1), 0.35_wp, 1.0e-15_wp, 'joint tip, element surface: mouth node')
+   call t%close(length(2), 1.0_wp, 1.0e-15_wp, 'joint tip, element surface: node next to the tip')
 
    ! ---- master segments on the four sides of a 3 x 3 square mesh: outward normals
    call quad_grid(3, 3, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1, x, ptr, conn)
