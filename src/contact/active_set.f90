@@ -693,20 +693,32 @@ contains
    end function has_hard
 
    !> Uzawa update of the HARD entries, lambda <- max(0, lambda - k g), after a solve
-   !> whose active set held; `overclosure` returns the largest overclosure of the HARD
-   !> entries before the update, relative to their tributary length (the local
-   !> element size), 0 when none overclose.
-   subroutine augment(self, overclosure)
+   !> whose active set held.  Returns, from before the update, the largest overclosure
+   !> of the HARD entries relative to their tributary length (the local element size;
+   !> 0 when none overclose) and the largest change k |g| of a force relative to the
+   !> largest force: the relative error of the pressures that the update corrects.
+   !> Gaps within `noise` (the round-off of the gaps, from that of the displacements)
+   !> count as closed: a stiff augmentation cannot correct below it.
+   subroutine augment(self, noise, overclosure, change)
       class(contact_state_t), intent(inout) :: self
-      real(wp), intent(out) :: overclosure
+      real(wp), intent(in) :: noise
+      real(wp), intent(out) :: overclosure, change
+      real(wp) :: fmax
       integer :: i
       overclosure = 0.0_wp
+      change = 0.0_wp
+      fmax = 0.0_wp
       do i = 1, self%n
          if (.not. self%pairs(self%pair(i))%hard .or. self%iseg(i) == 0) cycle
-         if (self%active(i)) overclosure = max(overclosure, -self%gap(i)/self%length(i))
+         if (self%active(i)) then
+            overclosure = max(overclosure, (-self%gap(i) - noise)/self%length(i))
+            change = max(change, self%k(i)*max(abs(self%gap(i)) - noise, 0.0_wp))
+            fmax = max(fmax, self%normal_force(i))
+         end if
          self%lambda(i) = max(0.0_wp, self%lambda(i) - self%k(i)*self%gap(i))
          if (.not. self%active(i)) self%lambda(i) = 0.0_wp
       end do
+      if (fmax > 0.0_wp) change = change/fmax
    end subroutine augment
 
    !> Gaps of every entry at displacements u with the current pairing frozen,

@@ -251,7 +251,7 @@ contains
       type(logger_t), intent(in), optional :: log
       logical, allocatable :: fixed(:), history(:, :), hold(:), held(:)
       real(wp), allocatable :: fext(:), f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:)
-      real(wp) :: t0, rel, scale, kmax, t_iter, t_fact, t_srch, step, rc_min, gap_tol, overclosure
+      real(wp) :: t0, rel, scale, kmax, t_iter, t_fact, t_srch, step, rc_min, gap_tol, overclosure, change
       logical :: warned, cut, newton_solve, same_matrix
       real(wp) :: rel_prev
       integer :: it, nchanged, maxit, j, nrise
@@ -413,9 +413,12 @@ contains
          if (nchanged == 0 .and. rel <= model%controls%residual_tol) then
             if (contact%has_hard()) then
                ! HARD: the augmented Lagrangian's Uzawa update; converged once the solve
-               ! left no overclosure beyond the tolerance
-               call contact%augment(overclosure)
-               if (overclosure > model%controls%overclosure_tol) cycle
+               ! left no overclosure beyond the tolerance and the update would change no
+               ! force by more than the residual tolerance (the pressures' accuracy)
+               ! the gaps' round-off: a few ulps of the largest displacement
+               call contact%augment(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), overclosure, change)
+               if (overclosure > model%controls%overclosure_tol .or. &
+                   change > model%controls%residual_tol) cycle
             end if
             call contact%set_balanced(model, ku - fext, fixed)
             return

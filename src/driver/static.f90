@@ -115,7 +115,8 @@ contains
          call sys%solve_state(model, st, u, error, contact, log)
          if (allocated(error)) return
          if (sys%iterations > 0) then
-            write (buf, '(2x,a,i0,a)') 'contact converged in ', sys%iterations, ' iterations'
+            write (buf, '(2x,a,i0,a,i0,a)') 'contact converged in ', sys%iterations, ' iterations (', &
+               sys%factorizations, ' numeric factorizations)'
             call log%say(trim(buf))
          end if
          if (sys%refactorized) call log%phase('factorize', sys%t_factorize)
