@@ -42,6 +42,9 @@ module vemcontact_contact_insertion
       integer :: side = 0
       real(wp) :: xi = 0.0_wp
       integer(ip) :: ends(2) = 0   !< the side's start and end node
+      !> curvature of the face along the side (side_curvature): the node is placed
+      !> on the curve through the face's vertices, not on the chord
+      real(wp) :: kappa = 0.0_wp
       integer(ip) :: node = 0      !< the new node
    end type insertion_t
 
@@ -116,8 +119,8 @@ contains
       ! partners: an end node of the side, or a node inserted into it
       allocate (ins(count(s_on > 0) + count(m_on > 0)))
       m = 0
-      call partners(mseg, melem, mside, s_on, s_xi, ins, m, s_partner)
-      call partners(sseg, selem, sside, m_on, m_xi, ins, m, m_partner)
+      call partners(mseg, melem, mside, side_curvature(model%x, mseg), s_on, s_xi, ins, m, s_partner)
+      call partners(sseg, selem, sside, side_curvature(model%x, sseg), m_on, m_xi, ins, m, m_partner)
       ins = ins(:m)
       call apply_insertions(model, ins, nadded)
       where (s_partner < 0) s_partner = ins(-s_partner)%node
@@ -166,10 +169,10 @@ contains
    !> The partner of each projected node: the end node of the side when the
    !> projection is within snap_rel of it, else -(index into ins) of the node to
    !> insert (appended to ins(m+1:)), 0 without a side.
-   pure subroutine partners(seg, elem, side, on, xi, ins, m, partner)
+   pure subroutine partners(seg, elem, side, kappa, on, xi, ins, m, partner)
       integer(ip), intent(in) :: seg(:, :), elem(:), on(:)
       integer, intent(in) :: side(:)
-      real(wp), intent(in) :: xi(:)
+      real(wp), intent(in) :: kappa(:), xi(:)
       type(insertion_t), intent(inout) :: ins(:)
       integer, intent(inout) :: m
       integer(ip), allocatable, intent(out) :: partner(:)
@@ -183,11 +186,69 @@ contains
             partner(i) = seg(2, on(i))
          else
             m = m + 1
-            ins(m) = insertion_t(elem(on(i)), side(on(i)), xi(i), seg(:, on(i)), 0_ip)
+            ins(m) = insertion_t(elem(on(i)), side(on(i)), xi(i), seg(:, on(i)), kappa(on(i)), 0_ip)
             partner(i) = -m
          end if
       end do
    end subroutine partners
+
+   !> Curvature of a face along each of its sides seg(:, k) = (a, b) (element
+   !> orientation, body on the left): the mean of the curvatures at a and b, each the
+   !> turning angle between the sides that meet there over their mean length (1/R for
+   !> vertices on a circle of radius R; exactly 0 where the sides are collinear);
+   !> positive where the face turns left, a convex boundary.  An end of an open face
+   !> takes the other end's value.
+   pure function side_curvature(x, seg) result(kappa)
+      real(wp), intent(in) :: x(:, :)
+      integer(ip), intent(in) :: seg(:, :)
+      real(wp), allocatable :: kappa(:)
+      integer(ip), allocatable :: into(:), from(:)
+      real(wp) :: ka, kb
+      logical :: ha, hb
+      integer :: k
+      allocate (into(size(x, 2)), from(size(x, 2)), source=0_ip)
+      do k = 1, size(seg, 2)
+         from(seg(1, k)) = k
+         into(seg(2, k)) = k
+      end do
+      allocate (kappa(size(seg, 2)))
+      do k = 1, size(seg, 2)
+         ha = into(seg(1, k)) > 0
+         hb = from(seg(2, k)) > 0
+         ka = 0.0_wp
+         kb = 0.0_wp
+         if (ha) ka = turning(into(seg(1, k)), k)
+         if (hb) kb = turning(k, from(seg(2, k)))
+         if (ha .and. hb) then
+            kappa(k) = 0.5_wp*(ka + kb)
+         else
+            kappa(k) = ka + kb
+         end if
+      end do
+   contains
+      !> turning angle from side k1 to side k2 (k1 ends where k2 starts) over their mean length
+      pure real(wp) function turning(k1, k2) result(c)
+         integer(ip), intent(in) :: k1, k2
+         real(wp) :: t1(2), t2(2), l1, l2
+         t1 = x(:, seg(2, k1)) - x(:, seg(1, k1))
+         t2 = x(:, seg(2, k2)) - x(:, seg(1, k2))
+         l1 = length2(t1)
+         l2 = length2(t2)
+         c = atan2(t1(1)*t2(2) - t1(2)*t2(1), dot_product(t1, t2))/(0.5_wp*(l1 + l2))
+      end function turning
+   end function side_curvature
+
+   !> The point at parameter xi of side a -> b on the curve of curvature kappa through
+   !> a and b: the chord point moved along the outward normal (t_y, -t_x)/l by the
+   !> circle's offset from its chord, kappa l^2 xi (1 - xi) / 2 to second order.
+   pure function on_face(xa, xb, xi, kappa) result(xp)
+      real(wp), intent(in) :: xa(2), xb(2), xi, kappa
+      real(wp) :: xp(2), t(2), l
+      t = xb - xa
+      l = length2(t)
+      xp = (1.0_wp - xi)*xa + xi*xb
+      if (kappa /= 0.0_wp) xp = xp + 0.5_wp*kappa*l*xi*(1.0_wp - xi)*[t(2), -t(1)]
+   end function on_face
 
    !> Refuse sides of FEM elements: they cannot take extra nodes.  One message that
    !> names the first few elements and where the first is defined.
@@ -251,7 +312,7 @@ contains
       call grow_nodes(model, nadded)
       do k = 1, size(ins)
          associate (i => ins(k)%node)
-            model%x(:, i) = (1.0_wp - ins(k)%xi)*model%x(:, ins(k)%ends(1)) + ins(k)%xi*model%x(:, ins(k)%ends(2))
+            model%x(:, i) = on_face(model%x(:, ins(k)%ends(1)), model%x(:, ins(k)%ends(2)), ins(k)%xi, ins(k)%kappa)
             model%node_loc(i) = model%elem_loc(ins(k)%elem)
             model%node_id(i) = idmax + (i - n0)
          end associate
