@@ -257,3 +257,35 @@ def test_pressures_add_up_to_the_transmitted_force(exe, tmp_path, pair, behavior
     total = float(np.sum(cpress[order] * trib))
     finite_sliding = pair == "TYPE=NODE TO SURFACE"
     assert abs(total / p - 1.0) <= (1e-6 if finite_sliding else 1e-8)
+
+
+def test_soft_block_sliding_off_is_reported(exe, tmp_path):
+    """A soft block (E = 1) pressed onto a stiff one (E = 1000) of the same width
+    expands more: with finite sliding its end node passes the master's end and carries
+    nothing.  That node gets STATUS 2 (slid off) in the results, never a silent 0 among
+    closed nodes.  Surface-to-surface contact keeps the reference pairing: on a flat
+    interface its gap n.(u_s - u_m) is exact whatever the slip, and the pressure is the
+    exact uniform one (two blocks of height 1 in series with the spring)."""
+    import test_contact as tc
+    results = {}
+    for name, pair in [("nts", "TYPE=NODE TO SURFACE"), ("sts", "TYPE=SURFACE TO SURFACE")]:
+        path = tmp_path / f"soft_{name}.inp"
+        tc.blocks_deck(path, 4, 6, 1.0e3, young=1000.0, delta=0.05)
+        text = path.read_text().replace("TYPE=NODE TO SURFACE", pair)
+        text = text.replace("*SOLID SECTION, ELSET=UPPER, MATERIAL=M",
+                            "*MATERIAL, NAME=SOFT\n*ELASTIC\n1.0, 0.3\n*SOLID SECTION, ELSET=UPPER, MATERIAL=SOFT")
+        path.write_text(text)
+        r = subprocess.run([exe, "-q", "-o", str(tmp_path / "o"), str(path)], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        with h5py.File(tmp_path / "o" / f"soft_{name}.h5", "r") as f:
+            g = f["steps/0001/contact/pair_1"]
+            results[name] = (np.array(g["coordinates"])[:, 0], np.array(g["CPRESS"]), np.array(g["STATUS"]))
+    x, cpress, status = results["nts"]
+    end = np.argmax(x)
+    assert status[end] == 2 and cpress[end] == 0.0
+    assert (status[np.arange(x.size) != end] == 1).all()
+    x, cpress, status = results["sts"]
+    # plane stress blocks: delta = p (1/E_soft + 1/E_stiff) + p / K
+    p = 0.05 / (1.0 / 1.0 + 1.0 / 1000.0 + 1.0 / 1.0e3)
+    assert (status == 1).all()
+    assert np.abs(cpress / p - 1.0).max() <= 1e-8

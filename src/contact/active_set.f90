@@ -121,6 +121,9 @@ module vemcontact_contact_active_set
       !> the iteration is the frozen-pairing fixed point of session 1)
       logical :: geometric_off = .false.
       logical, allocatable :: active(:)
+      !> the entry had a master segment at the start of the step and has none at its
+      !> end: it slid past the end of an open master surface (set by the driver)
+      logical, allocatable :: slid_off(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
    contains
       procedure :: init
@@ -347,6 +350,7 @@ contains
       allocate (self%geo_rhs(6, n), source=0.0_wp)
       allocate (self%active(n), source=.false.)
       allocate (self%lambda(n), source=0.0_wp)
+      allocate (self%slid_off(n), source=.false.)
    end subroutine allocate_entries
 
    !> Smallest E * thickness over the master segments' elements and the elements
@@ -794,6 +798,7 @@ contains
       allocate (tab%copen(self%n), tab%cpress(self%n), tab%cslip(self%n), tab%status(self%n))
       do i = 1, self%n
          tab%status(i) = merge(1, 0, self%active(i))
+         if (self%slid_off(i)) tab%status(i) = 2
          if (self%iseg(i) == 0) then
             ! no master segment within the search radius: the gap is at least the radius
             tab%copen(i) = self%pairs(self%pair(i))%radius

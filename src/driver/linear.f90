@@ -250,6 +250,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(logger_t), intent(in), optional :: log
       logical, allocatable :: fixed(:), history(:, :), hold(:), held(:)
+      integer(ip), allocatable :: iseg_start(:)
       real(wp), allocatable :: fext(:), f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:)
       real(wp) :: t0, rel, scale, kmax, t_iter, t_fact, t_srch, step, rc_min, gap_tol, overclosure, change
       logical :: warned, cut, newton_solve, same_matrix
@@ -282,6 +283,7 @@ contains
       if (allocated(error)) return
       call contact%update_active(nchanged)
       self%t_search = wall_time() - t0
+      iseg_start = contact%iseg
       history(:, 0) = contact%active
       gaps(:, 0) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
       self%t_factorize = 0
@@ -421,6 +423,7 @@ contains
                    change > model%controls%residual_tol) cycle
             end if
             call contact%set_balanced(model, ku - fext, fixed)
+            call report_slid_off()
             return
          end if
          ! Newton steps that raise the residual three times in a row are far from the
@@ -468,6 +471,32 @@ contains
          ' iterations (relative residual ', rel, ')'
       call fatal_error(error, trim(buf)//'; raise MAXIT on *CONTACT CONTROLS or check the penalty', err_solver)
    contains
+      !> Slave nodes that had a master segment at the start of the step and have none at
+      !> its end slid past the end of the master surface: they carry no pressure and
+      !> their neighbours the load they would carry; say so, naming them.
+      subroutine report_slid_off()
+         integer :: i, m
+         character(len=:), allocatable :: list
+         contact%slid_off = iseg_start > 0 .and. contact%iseg == 0
+         if (.not. any(contact%slid_off) .or. .not. present(log)) return
+         list = ''
+         m = 0
+         do i = 1, contact%n
+            if (.not. contact%slid_off(i)) cycle
+            m = m + 1
+            if (m <= 20) then
+               write (buf, '(i0)') model%node_id(contact%node(i))
+               list = list//', '//trim(buf)
+            end if
+         end do
+         if (m > 20) list = list//', ...'
+         write (buf, '(i0)') m
+         call log%say('  warning: '//trim(buf)//' slave nodes slid past the end of their master surface '// &
+                      'and carry no contact pressure (STATUS 2), their neighbours the load: nodes '//list(3:))
+         call log%say('  = help: extend the master surface beyond the slave''s, or, when the sliding is '// &
+                      'small, use SMALL SLIDING or TYPE=SURFACE TO SURFACE (pairing fixed at the start)')
+      end subroutine report_slid_off
+
       !> u <- u + A^-1 (b - A u) with b - A u = f_ext - K u - f_c(u), the contact
       !> forces of the frozen pairing from the gaps (contact_state_t%linear_forces).
       subroutine refine(u)

@@ -23,7 +23,7 @@ module vemcontact_output_contact
       real(wp), allocatable :: copen(:)
       real(wp), allocatable :: cpress(:)
       real(wp), allocatable :: cslip(:)
-      integer, allocatable :: status(:)       !< 1 closed, 0 open
+      integer, allocatable :: status(:)       !< 1 closed, 0 open, 2 slid past the end of the master
       integer, allocatable :: pair(:)
       integer(ip), allocatable :: node(:)     !< internal node index (for the driver)
    end type contact_table_t
@@ -48,7 +48,7 @@ contains
          if (tab%pair(k) /= ipair) cycle
          if (ios /= 0) exit
          write (unit, '(i0,5(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
-            tab%copen(k), tab%cpress(k), tab%cslip(k), trim(merge('CLOSED', 'OPEN  ', tab%status(k) == 1))
+            tab%copen(k), tab%cpress(k), tab%cslip(k), status_name(tab%status(k))
       end do
       close (unit)
       if (ios /= 0) then
@@ -57,6 +57,20 @@ contains
       end if
       call replace_file(path//'.tmp', path, error)
    end subroutine write_contact_csv
+
+   !> CSV name of a STATUS value.
+   pure function status_name(status) result(s)
+      integer, intent(in) :: status
+      character(len=:), allocatable :: s
+      select case (status)
+      case (1)
+         s = 'CLOSED'
+      case (2)
+         s = 'SLID_OFF'
+      case default
+         s = 'OPEN'
+      end select
+   end function status_name
 
    !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, CSLIP, STATUS, PAIR, NODE_ID.
    subroutine write_contact_vtu(path, tab, error)
