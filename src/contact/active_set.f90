@@ -25,8 +25,8 @@ module vemcontact_contact_active_set
                                           project_point_segment, seg_ok, length2, contact_slip
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
-   use vemcontact_driver_supports, only: spring_t
-   use vemcontact_output_contact, only: contact_table_t
+   use vemcontact_contact_spring, only: spring_t
+   use vemcontact_contact_table, only: contact_table_t
    implicit none
    private
 

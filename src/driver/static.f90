@@ -14,7 +14,8 @@ module vemcontact_driver_static
    use vemcontact_output_vtu, only: write_vtu
    use vemcontact_output_pvd, only: write_pvd
    use vemcontact_output_hdf5, only: h5_writer_t
-   use vemcontact_output_contact, only: contact_table_t, write_contact_csv, write_contact_vtu
+   use vemcontact_output_contact, only: write_contact_csv, write_contact_vtu
+   use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time

@@ -9,18 +9,11 @@ module vemcontact_driver_supports
    use vemcontact_error, only: error_t, append_message, err_model
    use vemcontact_model, only: model_t, location_string
    use vemcontact_linalg_lapack, only: dsyev
+   use vemcontact_contact_spring, only: spring_t
    implicit none
    private
 
-   public :: find_parts, check_supports, unused_nodes, spring_t
-
-   !> A closed contact spring: where it acts, its normal, and the parts it joins.
-   type :: spring_t
-      real(wp) :: x(2) = 0.0_wp
-      real(wp) :: normal(2) = 0.0_wp
-      integer(ip) :: part_slave = 0
-      integer(ip) :: part_master = 0
-   end type spring_t
+   public :: find_parts, check_supports, unused_nodes
 
 contains
 

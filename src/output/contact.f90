@@ -11,22 +11,12 @@ module vemcontact_output_contact
    use vemcontact_error, only: error_t, fatal_error, err_io
    use vemcontact_output_base64, only: as_bytes
    use vemcontact_output_vtu, only: put, put_array, byte_order, int_type_name, itoa, replace_file
+   use vemcontact_contact_table, only: contact_table_t
    implicit none
    private
 
-   public :: contact_table_t, write_contact_csv, write_contact_vtu
+   public :: write_contact_csv, write_contact_vtu
 
-   !> The slave nodes of one or more pairs and their results.
-   type :: contact_table_t
-      integer(ip), allocatable :: node_id(:)
-      real(wp), allocatable :: x(:, :)        !< (2, n) undeformed coordinates
-      real(wp), allocatable :: copen(:)
-      real(wp), allocatable :: cpress(:)
-      real(wp), allocatable :: cslip(:)
-      integer, allocatable :: status(:)       !< 1 closed, 0 open, 2 slid past the end of the master
-      integer, allocatable :: pair(:)
-      integer(ip), allocatable :: node(:)     !< internal node index (for the driver)
-   end type contact_table_t
 
 contains
 

@@ -4,7 +4,8 @@ program test_supports
    use vemcontact_testing, only: checker_t
    use vemcontact_error, only: error_t, err_model
    use vemcontact_model, only: model_t, string_t, source_loc_t
-   use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes, spring_t
+   use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes
+   use vemcontact_contact_spring, only: spring_t
    implicit none
    type(checker_t) :: t
    type(model_t) :: m

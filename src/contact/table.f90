@@ -1,0 +1,22 @@
+!> The contact results of one step: one row per slave entry of every pair, as
+!> the contact state reports them (contact_state_t%table) and the writers of
+!> src/output put them on disk (CSV, VTU, HDF5; docs/output-format.md).
+module vemcontact_contact_table
+   use vemcontact_kinds, only: wp, ip
+   implicit none
+   private
+
+   public :: contact_table_t
+
+   !> The slave nodes of one or more pairs and their results.
+   type :: contact_table_t
+      integer(ip), allocatable :: node_id(:)
+      real(wp), allocatable :: x(:, :)        !< (2, n) undeformed coordinates
+      real(wp), allocatable :: copen(:)
+      real(wp), allocatable :: cpress(:)
+      real(wp), allocatable :: cslip(:)
+      integer, allocatable :: status(:)       !< 1 closed, 0 open, 2 slid past the end of the master
+      integer, allocatable :: pair(:)
+      integer(ip), allocatable :: node(:)     !< internal node index (for the driver)
+   end type contact_table_t
+end module vemcontact_contact_table
