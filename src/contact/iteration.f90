@@ -139,6 +139,7 @@ contains
       kmax = sys%largest_elastic_diagonal()
       allocate (history(contact%n, 0:maxit), gaps(contact%n, 0:maxit), gfrozen(contact%n))
       allocate (held(contact%n), source=.false.)
+      if (allocated(sys%records)) deallocate (sys%records)
       allocate (sys%records(0))
       sys%iterations = 0
       sys%factorizations = 0
