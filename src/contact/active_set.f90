@@ -654,8 +654,8 @@ contains
 
    !> The normal force of each active entry that the solution balances, from
    !> r = K u - f_ext (the force the contact exerts on each node): n . r at the slave
-   !> node, where that node takes part in no other active entry and none of its dofs
-   !> is fixed (so that r there is this entry's force alone); the spring's own force
+   !> node, where that node takes part in no other active entry and no fixed dof of it
+   !> has a normal component (so that n . r is this entry's force alone); the spring's own force
    !> N = max(0, lambda - k g) elsewhere.  The spring force is K times an overclosure
    !> that is a small difference of displacements and loses digits like the penalty
    !> grows; r is the elastic body's own force, accurate to the round-off of the
@@ -681,7 +681,9 @@ contains
          self%balanced(i) = self%normal_force(i)
          if (.not. self%active(i)) cycle
          s = self%node(i)
-         if (uses(s) /= 1 .or. fixed(2*s - 1) .or. fixed(2*s)) cycle
+         ! a fixed dof's residual holds its reaction: usable only across the normal
+         if (uses(s) /= 1 .or. (fixed(2*s - 1) .and. self%normal(1, i) /= 0.0_wp) .or. &
+             (fixed(2*s) .and. self%normal(2, i) /= 0.0_wp)) cycle
          self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))
       end do
    end subroutine set_balanced
@@ -701,13 +703,15 @@ contains
    !> of the HARD entries relative to their tributary length (the local element size;
    !> 0 when none overclose) and the largest change k |g| of a force relative to the
    !> largest force: the relative error of the pressures that the update corrects.
-   !> Gaps within `noise` (the round-off of the gaps, from that of the displacements)
-   !> count as closed: a stiff augmentation cannot correct below it.
-   subroutine augment(self, noise, overclosure, change)
+   !> Gaps within their round-off count as closed, a stiff augmentation cannot correct
+   !> below it: `noise_u` from the displacements, plus `noise_x` from the coordinates
+   !> for an entry whose reference gap is not exactly zero (a node facing a segment
+   !> between its ends; nodes that coincide have g0 = 0 exactly, gap0_roundoff).
+   subroutine augment(self, noise_u, noise_x, overclosure, change)
       class(contact_state_t), intent(inout) :: self
-      real(wp), intent(in) :: noise
+      real(wp), intent(in) :: noise_u, noise_x
       real(wp), intent(out) :: overclosure, change
-      real(wp) :: fmax
+      real(wp) :: fmax, noise
       integer :: i
       overclosure = 0.0_wp
       change = 0.0_wp
@@ -715,6 +719,8 @@ contains
       do i = 1, self%n
          if (.not. self%pairs(self%pair(i))%hard .or. self%iseg(i) == 0) cycle
          if (self%active(i)) then
+            noise = noise_u
+            if (self%gap0(i) /= 0.0_wp) noise = noise + noise_x
             overclosure = max(overclosure, (-self%gap(i) - noise)/self%length(i))
             change = max(change, self%k(i)*max(abs(self%gap(i)) - noise, 0.0_wp))
             fmax = max(fmax, self%normal_force(i))
