@@ -5,8 +5,9 @@ import sys
 
 import pytest
 
-from vctools.paper import runs
+from vctools.paper import reproduce, runs
 from vctools.plot import curves
+from vctools.plot.results import ResultError
 
 ENV = dict(os.environ, PYTHONPATH=os.path.join(os.path.dirname(__file__), ".."))
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -121,6 +122,61 @@ def test_paper_quick(vemcontact, tmp_path):
     # example 1 at 2d/b = 0: the Q4 closed form 1/4.125 (pure bending, two 20 x 8 elements, nu = 0)
     row = next(line for line in text.splitlines() if line.startswith("| 0.0 |"))
     assert float(row.split("|")[3]) == pytest.approx(1 / 4.125, rel=1e-3)
+    # the HARD and SURFACE TO SURFACE variants: sections, figures and the claims they rest on
+    for section in ("### Example 2 with HARD contact", "### Example 3 node by node", "The exact reference"):
+        assert section in text, section
+    for name in ("fig07b_hertz_pressure_hard.png", "fig10c_interface_nts_sts.png"):
+        assert (figs / name).read_bytes()[:8] == PNG and f"figures/{name}" in text
+    work = tmp_path / "work"
+    for kind in ("vem_nts", "vem_sts", "fem_nts"):
+        h = reproduce.hertz_hard_stats(runs.read_contact(str(work / f"hard_hertz_389_{kind}")))
+        assert h["overclosure"] < 1e-12, kind                      # HARD: no overclosure
+        assert h["peak"] == pytest.approx(83.60, rel=0.04), kind
+        assert h["last_closed"] < h["first_open"]
+    for m in ("quad", "voronoi_50"):
+        # the contact patch test (top and bottom on rollers): STS exact to round-off, NTS not
+        sts = reproduce.patch_stats(str(work / f"roller_{m}_sts"))
+        nts = reproduce.patch_stats(str(work / f"roller_{m}_nts"))
+        assert sts["cpress"] < 1e-8 and sts["stress_max"] < 1e-8 and sts["slip"] < 1e-10, (m, sts)
+        assert sts["n"] > nts["n"]                                 # inserted nodes are slave nodes too
+        assert nts["cpress"] > 0.01 and nts["stress_max"] > 0.01, (m, nts)
+        # the clamped deck: STS keeps every slave node of the deck, NTS scatters about it
+        nb = reproduce.node_by_node(runs.read_contact(str(work / f"interface_{m}")),
+                                    runs.read_contact(str(work / f"interface_{m}_sts")))
+        assert nb["n"] == nts["n"] and 0.01 < nb["max"] < 0.5, (m, nb)
+
+
+def test_variant_deck(tmp_path):
+    """Deck variants by text substitution: HARD drops the LINEAR data line, rollers free x but at one
+    corner node per block, and a deck without what is to be replaced is an error, not a silent copy."""
+    src = os.path.join(ROOT, "inputs", "interface_voronoi_50.inp")
+    text = reproduce.variant_deck(src, "test", surface_to_surface=True, hard=True, rollers=True)
+    assert "TYPE=SURFACE TO SURFACE" in text and "PRESSURE-OVERCLOSURE=HARD" in text
+    assert "1.0e12" not in text and "LINEAR" not in text.split("*SURFACE BEHAVIOR")[1].split("\n")[0]
+    bc = text.split("*BOUNDARY")[1].split("*STEP")[0].split()
+    assert bc[0] == "BOTTOM," and "TOP," not in bc and len(bc) == 9     # BOTTOM, 2, 2 / n, 1, 1 / m, 1, 1
+    assert "INPUT=" + os.path.join(ROOT, "inputs", "meshes") in text
+    with pytest.raises(ResultError, match="no BOTTOM,1,2"):
+        reproduce.variant_deck(os.path.join(ROOT, "inputs", "hertz_389_vem.inp"), "test", rollers=True)
+
+
+def test_dam_joint_formulations(vemcontact, tmp_path):
+    """Example 4's joint: NODE TO SURFACE (penalty) and SURFACE TO SURFACE (HARD) agree node by node
+    on the matched joint (no node inserted), both steps; the slave node next to the tip carries its
+    neighbours' pressure (the tip fix); CSLIP is read, zero after the geostatic step."""
+    src = os.path.join(ROOT, "inputs", "dam_joint.inp")
+    deck = tmp_path / "dam_sts.inp"
+    deck.write_text(reproduce.variant_deck(src, "test", surface_to_surface=True, hard=True))
+    for d, o in ((src, "nts"), (str(deck), "sts")):
+        subprocess.run([vemcontact, "-q", "-o", str(tmp_path / o), d], check=True)
+    for step in (1, 2):
+        n, s = runs.read_contact(str(tmp_path / "nts"), step=step), runs.read_contact(str(tmp_path / "sts"), step=step)
+        nb = reproduce.node_by_node(n, s)
+        assert nb["extra"] == 0 and nb["n"] == len(n.node) and nb["max"] < 0.005, nb
+        for c in (n, s):
+            assert c.closed.all() and reproduce.tip_ratio(c) == pytest.approx(1.0, abs=0.1)
+            assert c.cslip is not None and (step == 2 or (c.cslip == 0).all())
+        assert s.copen.min() > -1e-15                                # HARD: no overclosure
 
 
 def test_paper_bad_exe(tmp_path):

@@ -9,12 +9,21 @@ beside ours and, where they differ, by how much and why:
 
   example 1  two-element cantilever, 2d/b = 0, 0.5, ..., 4, VEM and FEM (Fig. 4)
   example 2  Hertz contact, 389/600/1155 elements, VEM and FEM (Figs. 6-8), and
-             the 600-element VEM mesh with K = 1e5, 1e4, 1e3 (Table 1)
-  example 3  horizontal interface, quad/tri/Voronoi 50-500 meshes (Figs. 10, 11)
-  example 4  dam on a jointed foundation (Figs. 13, 14)
+             the 600-element VEM mesh with K = 1e5, 1e4, 1e3 (Table 1); each mesh
+             also with HARD contact, NODE TO SURFACE and (VEM) SURFACE TO SURFACE
+  example 3  horizontal interface, quad/tri/Voronoi 50-500 meshes (Figs. 10, 11),
+             and node by node NODE TO SURFACE against SURFACE TO SURFACE (HARD),
+             in the decks as they are and with the top and bottom on rollers
+             (the contact patch test: exact uniform pressure)
+  example 4  dam on a jointed foundation (Figs. 13, 14), NODE TO SURFACE with
+             the penalty and SURFACE TO SURFACE with HARD along the joint
+
+Variants of the decks in inputs/ are written to the work folder's decks/ by text
+substitution (TYPE=SURFACE TO SURFACE, PRESSURE-OVERCLOSURE=HARD, rollers).
 
 --quick runs a subset (2d/b = 0 and 2, the 389-element Hertz meshes, Table 1 on
-the 389-element mesh, two interface meshes, no dam) for tests.  Exit status:
+the 389-element mesh, two interface meshes, no dam) for tests, with the same
+variants.  Exit status:
 0 done, 1 a run failed or bad input (the document is still written, naming the
 failed runs).
 """
@@ -50,6 +59,8 @@ HERTZ_MESHES = [389, 600, 1155]
 PENALTIES = [1.0e5, 1.0e4, 1.0e3]
 INTERFACES = ["quad", "tri", "voronoi_50", "voronoi_100", "voronoi_200", "voronoi_300", "voronoi_500"]
 JOINT_LINE = [[4.0, 10.0], [10.0, 4.0]]
+E_PLANE_STRAIN = 1.0e9 / (1 - 0.3 ** 2)                # example 3: E / (1 - nu^2)
+P_INTERFACE = E_PLANE_STRAIN * 0.05                     # example 3 on rollers: the exact uniform pressure
 
 
 @dataclass
@@ -148,6 +159,57 @@ def penalty_deck(nelem: int, K: float, form: str = "vem") -> str:
     return "\n".join(out) + "\n"
 
 
+def variant_deck(src: str, note: str, surface_to_surface: bool = False, hard: bool = False,
+                 rollers: bool = False) -> str:
+    """A variant of the deck `src` (inputs/...) by text substitution: TYPE=SURFACE TO SURFACE on
+    *CONTACT PAIR, PRESSURE-OVERCLOSURE=HARD (its LINEAR data line dropped), and for example 3
+    `rollers`: the model's supports BOTTOM, 1, 2 and TOP, 1 become BOTTOM, 2 and TOP free in x
+    but for the left corner node of each (x held there: no rigid sliding), so that the exact
+    solution is the uniform compression.  *INCLUDE paths become absolute."""
+    with open(src) as fh:
+        lines = fh.read().splitlines()
+    out = [f"** written by vctools.paper from {os.path.relpath(src, ROOT)}: {note}"]
+    drop_data, in_bc, before_steps, done = False, False, True, set()
+    mesh = None
+    for line in lines:
+        s = line.strip()
+        u = s.upper().replace(" ", "")
+        if drop_data and s and not s.startswith("**"):
+            drop_data = False
+            if not s.startswith("*"):
+                continue                   # the LINEAR data line K
+        if u.startswith("*STEP"):
+            before_steps = False
+        if s.startswith("*") and not s.startswith("**"):
+            in_bc = u.startswith("*BOUNDARY") and before_steps
+        if u.startswith("*INCLUDE"):
+            m = re.search(r"INPUT=(\S+)", line, flags=re.I)
+            mesh = os.path.join(os.path.dirname(src), m.group(1))
+            line = line[:m.start(1)] + mesh + line[m.end(1):]
+        if hard and u.startswith("*SURFACEBEHAVIOR"):
+            line, drop_data = "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD", True
+            done.add("hard")
+        if surface_to_surface and u.startswith("*CONTACTPAIR"):
+            line = re.sub(r"TYPE\s*=\s*NODE TO SURFACE", "TYPE=SURFACE TO SURFACE", line, flags=re.I)
+            done.add("sts")
+        if rollers and in_bc and u in ("BOTTOM,1,2", "TOP,1"):
+            nodes = _mesh_nodes(mesh)
+            if u == "TOP,1":
+                top = min(nodes, key=lambda i: (-nodes[i][1], nodes[i][0]))
+                out.append(f"{top}, 1, 1")
+            else:
+                bottom = min(nodes, key=lambda i: (nodes[i][1], nodes[i][0]))
+                out += ["BOTTOM, 2, 2", f"{bottom}, 1, 1"]
+            done.add(u)
+            continue
+        out.append(line)
+    want = ({"hard"} if hard else set()) | ({"sts"} if surface_to_surface else set()) | \
+        ({"BOTTOM,1,2", "TOP,1"} if rollers else set())
+    if want - done:
+        raise ResultError(f"{src}: cannot write the variant ({note}): no {', '.join(sorted(want - done))} to replace")
+    return "\n".join(out) + "\n"
+
+
 def make_plan(quick: bool) -> Plan:
     if quick:
         return Plan(distortions=[0.0, 2.0], hertz=[389], table1_mesh=389, interfaces=["quad", "voronoi_50"], dam=False)
@@ -177,10 +239,30 @@ def write_jobs(plan: Plan, work: str) -> None:
     for form in ("vem", "fem"):    # the paper's final choice omega = 1e4 on its finest mesh
         n = max(plan.hertz)
         add(f"hertz_{n}_{form}_K1e4", os.path.join(decks, f"hertz_{n}_{form}_K1e+04.inp"), penalty_deck(n, 1.0e4, form))
+    # HARD contact: node to surface on every mesh, surface to surface on the VEM meshes
+    # (surface to surface inserts nodes into polygons: FEM bodies are refused)
+    for n in plan.hertz:
+        for form, kinds in (("vem", ("nts", "sts")), ("fem", ("nts",))):
+            src = os.path.join(INPUTS, f"hertz_{n}_{form}.inp")
+            for kind in kinds:
+                add(f"hard_hertz_{n}_{form}_{kind}", os.path.join(decks, f"hertz_{n}_{form}_{kind}_hard.inp"),
+                    variant_deck(src, f"{'SURFACE' if kind == 'sts' else 'NODE'} TO SURFACE, HARD",
+                                 surface_to_surface=kind == "sts", hard=True))
     for m in plan.interfaces:
-        add(f"interface_{m}", os.path.join(INPUTS, f"interface_{m}.inp"))
+        src = os.path.join(INPUTS, f"interface_{m}.inp")
+        add(f"interface_{m}", src)
+        add(f"interface_{m}_sts", os.path.join(decks, f"interface_{m}_sts_hard.inp"),
+            variant_deck(src, "SURFACE TO SURFACE, HARD", surface_to_surface=True, hard=True))
+        add(f"roller_{m}_nts", os.path.join(decks, f"interface_{m}_rollers.inp"),
+            variant_deck(src, "top and bottom on rollers", rollers=True))
+        add(f"roller_{m}_sts", os.path.join(decks, f"interface_{m}_rollers_sts_hard.inp"),
+            variant_deck(src, "top and bottom on rollers, SURFACE TO SURFACE, HARD", surface_to_surface=True,
+                         hard=True, rollers=True))
     if plan.dam:
-        add("dam_joint", os.path.join(INPUTS, "dam_joint.inp"))
+        src = os.path.join(INPUTS, "dam_joint.inp")
+        add("dam_joint", src)
+        add("dam_joint_sts", os.path.join(decks, "dam_joint_sts_hard.inp"),
+            variant_deck(src, "SURFACE TO SURFACE, HARD", surface_to_surface=True, hard=True))
 
 
 def run_job(exe: str, job: Job) -> Job:
@@ -281,6 +363,136 @@ def interface_stats(c: rr.ContactCurve) -> dict:
             "mid_min": float(p[mid].min()) if mid.any() else float("nan"),
             "mid_max": float(p[mid].max()) if mid.any() else float("nan"),
             "closed": int(c.closed.sum()), "n": len(c.x), "nelem": None}
+
+
+def hertz_hard_stats(c: rr.ContactCurve) -> dict:
+    """Peak and half-width of a Hertz run.  The half-width a is the least-squares fit of the
+    Hertz shape p^2 = p0^2 (1 - x^2/a^2), a line in x^2, to the closed nodes; the contact edge
+    itself lies between the last closed and the first open node."""
+    o = np.argsort(c.x)
+    x, p, cl, g = c.x[o], c.cpress[o], c.closed[o], c.copen[o]
+    slope, icpt = np.polyfit(x[cl] ** 2, p[cl] ** 2, 1) if cl.sum() >= 2 else (float("nan"), float("nan"))
+    last = int(np.flatnonzero(cl)[-1]) if cl.any() else -1
+    return {"peak": float(p.max()), "at": float(x[int(np.argmax(p))]), "nclosed": int(cl.sum()), "n": len(x),
+            "a_fit": float(np.sqrt(-icpt / slope)) if slope < 0 < icpt else float("nan"),
+            "last_closed": float(x[last]) if last >= 0 else float("nan"),
+            "first_open": float(x[last + 1]) if 0 <= last < len(x) - 1 else float("nan"),
+            "overclosure": float(max(0.0, -g[cl].min())) if cl.any() else 0.0}
+
+
+def element_stress(run: str) -> np.ndarray:
+    """The element stresses (xx, yy, zz, xy) of the last step of a run."""
+    import h5py
+    f = rr.h5_file(run)
+    try:
+        with h5py.File(f, "r") as h:
+            return h[f"steps/{sorted(h['steps'])[-1]}/S_element"][()]
+    except (OSError, KeyError) as exc:
+        raise ResultError(f"{f}: no element stresses ({' '.join(str(exc).split())})") from None
+
+
+def patch_stats(run: str, p: float = P_INTERFACE) -> dict:
+    """Example 3 on rollers against its exact solution, the uniform compression
+    S_yy = -p, S_xx = S_xy = 0: the largest |CPRESS/p - 1| over the slave nodes and
+    the largest and rms element stress error max(|S_xx|, |S_yy + p|, |S_xy|) / p."""
+    c = rr.read_contact(run)
+    s = element_stress(run)
+    e = np.abs(s[:, [0, 1, 3]] - np.array([0.0, -p, 0.0])).max(axis=1) / p
+    return {"n": len(c.x), "closed": int(c.closed.sum()), "cpress": float(np.abs(c.cpress / p - 1).max()),
+            "stress_max": float(e.max()), "stress_rms": float(np.sqrt(np.mean(e ** 2))),
+            "slip": float(np.abs(c.cslip).max()) if c.cslip is not None else float("nan")}
+
+
+def node_by_node(nts: rr.ContactCurve, sts: rr.ContactCurve) -> dict:
+    """NODE TO SURFACE against SURFACE TO SURFACE at the deck's slave nodes: the surface-to-
+    surface pair keeps them (same ids) and adds the inserted nodes.  Returns the largest
+    |p_NTS - p_STS| over the common nodes relative to the mean STS pressure there."""
+    at = {int(n): k for k, n in enumerate(sts.node)}
+    common = [(i, at[int(n)]) for i, n in enumerate(nts.node) if int(n) in at]
+    if not common:
+        return {"n": 0, "max": float("nan"), "mean": float("nan")}
+    a = np.array([nts.cpress[i] for i, _ in common])
+    b = np.array([sts.cpress[j] for _, j in common])
+    ref = float(np.mean(np.abs(b))) or 1.0
+    return {"n": len(common), "max": float(np.abs(a - b).max() / ref), "mean": ref,
+            "extra": len(sts.node) - len(common)}
+
+
+def joint_coordinate(c: rr.ContactCurve) -> np.ndarray:
+    """Distance along the dam's joint from the heel (4, 10) toward the tip (10, 4)."""
+    (x0, y0), (x1, y1) = JOINT_LINE
+    d = np.array([x1 - x0, y1 - y0]) / math.hypot(x1 - x0, y1 - y0)
+    return (c.x - x0) * d[0] + (c.y - y0) * d[1]
+
+
+def tip_ratio(c: rr.ContactCurve) -> float:
+    """CPRESS of the slave node nearest the joint tip (the tip itself excluded: it is shared by
+    both faces) over the mean of its two neighbours along the joint; the old joint-tip defect
+    gave about 2."""
+    s = joint_coordinate(c)
+    o = np.argsort(s)
+    length = math.hypot(JOINT_LINE[1][0] - JOINT_LINE[0][0], JOINT_LINE[1][1] - JOINT_LINE[0][1])
+    keep = [k for k in o if length - s[k] > 1e-9]
+    if len(keep) < 3:
+        return float("nan")
+    p = c.cpress[keep]
+    return float(p[-1] / (0.5 * (p[-2] + p[-3]))) if p[-2] + p[-3] else float("nan")
+
+
+def plot_interface_nodes(pairs: list, out: str, title: str) -> None:
+    """CPRESS / p along the interface, node by node, one panel per (label, NTS, STS, exact)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(len(pairs), 1, figsize=(8.0, 3.4 * len(pairs)), dpi=110, squeeze=False)
+    for ax, (label, nts, sts, exact) in zip(axes[:, 0], pairs):
+        for c, style, name in ((sts, dict(marker=".", ms=4, lw=1.0, color="C0"), "SURFACE TO SURFACE, HARD"),
+                               (nts, dict(marker="o", ms=5, lw=0.8, color="C3", mfc="none"),
+                                "NODE TO SURFACE, penalty K = 1e12")):
+            o = np.argsort(c.x)
+            ax.plot(c.x[o], c.cpress[o] / P_INTERFACE, label=f"{name} ({len(c.x)} slave nodes)", **style)
+        if exact:
+            ax.axhline(1.0, color="k", lw=0.8, ls="--", label="exact (uniform)")
+        ax.set_ylabel("CPRESS / (E/(1-nu^2) x 0.05)")
+        ax.set_title(label, fontsize=10)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[-1, 0].set_xlabel("x [m]")
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout()
+    fig.savefig(out)
+    plt.close(fig)
+    _shrink_png(out)
+
+
+def plot_joint(runs: list, out: str, title: str) -> None:
+    """CPRESS and CSLIP along the dam's joint for both steps, one curve per (label, folder)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, 2, figsize=(10.5, 6.6), dpi=110, sharex=True)
+    styles = (dict(marker="o", ms=5, mfc="none", lw=0.8, color="C3"), dict(marker=".", ms=4, lw=1.0, color="C0"))
+    for (label, folder), st in zip(runs, styles):
+        for j, step in enumerate((1, 2)):
+            c = rr.read_contact(folder, step=step)
+            s = joint_coordinate(c)
+            o = np.argsort(s)
+            axes[0, j].plot(s[o], c.cpress[o] / 1e3, label=label, **st)
+            if c.cslip is not None:
+                axes[1, j].plot(s[o], c.cslip[o] * 1e6, label=label, **st)
+    for j, name in enumerate(("step 1, self-weight (geostatic)", "step 2, reservoir")):
+        axes[0, j].set_title(name, fontsize=10)
+        axes[0, j].set_ylabel("CPRESS [kPa]")
+        axes[1, j].set_ylabel("CSLIP [um]")
+        axes[1, j].set_xlabel("distance along the joint from the heel (4, 10) [m]")
+        for i in (0, 1):
+            axes[i, j].grid(alpha=0.3)
+            axes[i, j].legend(fontsize=8)
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout()
+    fig.savefig(out)
+    plt.close(fig)
+    _shrink_png(out)
 
 
 def dam_stats(h5: str) -> dict:

@@ -3,7 +3,7 @@
 One place for the parsing of our own files (docs/output-format.md):
 
 * ``JOB_contact_pairK_NNNN.csv``: slave node, x, y, COPEN, CPRESS, CSLIP, STATUS
-  (columns found by name; CSLIP is not read);
+  (columns found by name; CSLIP is optional: older results lack it);
 * ``JOB.log``: one line per active-set iteration (active nodes, changed, residual,
   largest penetration, largest pressure, times) under a ``step NAME`` line;
 * ``JOB.h5``: mesh, element formulation and the displacements of each step.
@@ -69,6 +69,7 @@ class ContactCurve:
     copen: np.ndarray
     cpress: np.ndarray
     closed: np.ndarray            # bool
+    cslip: np.ndarray | None = None   # None when the file has no CSLIP column
 
     def along(self, how: str = "auto") -> tuple[np.ndarray, str]:
         """Coordinate along the pair and its axis label.  'x' or 'y': that
@@ -136,13 +137,14 @@ def read_contact(path: str, pair: int = 1, step: int = 0) -> ContactCurve:
     missing = [c for c in CONTACT_COLUMNS if c not in head]
     if missing:
         raise ResultError(f"{f}: lacks the columns {', '.join(missing)}: not a vemcontact contact CSV")
-    idx = {c: head.index(c) for c in CONTACT_COLUMNS}
-    cols = {c: [] for c in CONTACT_COLUMNS}
+    names = CONTACT_COLUMNS + (("CSLIP",) if "CSLIP" in head else ())
+    idx = {c: head.index(c) for c in names}
+    cols = {c: [] for c in names}
     for n, row in enumerate(rows[1:], start=2):
         if not row:
             continue
         try:
-            for c in CONTACT_COLUMNS:
+            for c in names:
                 v = row[idx[c]].strip()
                 cols[c].append(v if c == "STATUS" else float(v))
         except (IndexError, ValueError):
@@ -154,7 +156,8 @@ def read_contact(path: str, pair: int = 1, step: int = 0) -> ContactCurve:
                         node=np.asarray(cols["node"], dtype=np.int64), x=np.asarray(cols["x"]),
                         y=np.asarray(cols["y"]), copen=np.asarray(cols["COPEN"]),
                         cpress=np.asarray(cols["CPRESS"]),
-                        closed=np.asarray([s.upper() == "CLOSED" for s in cols["STATUS"]], dtype=bool))
+                        closed=np.asarray([s.upper() == "CLOSED" for s in cols["STATUS"]], dtype=bool),
+                        cslip=np.asarray(cols["CSLIP"]) if "CSLIP" in cols else None)
 
 
 # ------------------------------------------------------------------ log
