@@ -289,3 +289,20 @@ def test_soft_block_sliding_off_is_reported(exe, tmp_path):
     p = 0.05 / (1.0 / 1.0 + 1.0 / 1000.0 + 1.0 / 1.0e3)
     assert (status == 1).all()
     assert np.abs(cpress / p - 1.0).max() <= 1e-8
+
+
+def test_side_held_at_both_ends_refused(exe, tmp_path):
+    """A side whose two end nodes are both held in the same dof would get a free node
+    in between (the boundary conditions of node sets are resolved to nodes when the
+    deck is read): one clear error naming the nodes, exit 1."""
+    import test_contact as tc
+    path = tmp_path / "held.inp"
+    tc.blocks_deck(path, 3, 5, 1.0e3)
+    text = path.read_text().replace("TYPE=NODE TO SURFACE", "TYPE=SURFACE TO SURFACE")
+    # the lower block's top nodes (3 x 2 quads: nodes 9 to 12) held in x
+    text = text.replace("*BOUNDARY\nBOTTOM, 2", "*BOUNDARY\n9, 1\n10, 1\n11, 1\n12, 1\nBOTTOM, 2")
+    path.write_text(text)
+    r = subprocess.run([exe, "-q", "-o", str(tmp_path / "o"), str(path)], capture_output=True, text=True)
+    assert r.returncode == 1
+    assert "which both carry a *BOUNDARY condition on the same dof" in r.stderr
+    assert r.stderr.count("error:") == 1 and "held.inp:" in r.stderr

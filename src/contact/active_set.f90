@@ -252,8 +252,8 @@ contains
    !> The fixed node-to-node pairing of a SURFACE TO SURFACE pair: each slave node's
    !> partner from the interface node insertion, as the end xi = 0 or 1 of a master
    !> segment, with the normal of the master surface at the partner (the normalized
-   !> sum of the unit normals of the segments that meet there: on a straight side,
-   !> where inserted nodes lie, that side's normal; at a vertex of a curved master a
+   !> sum of the unit normals of the segments that meet there: on a straight master,
+   !> that side's normal; at a vertex of a curved master, inserted ones included, a
    !> direction between its two sides).
    subroutine node_partners(model, pair, node, seg, pd)
       type(model_t), intent(in) :: model
@@ -785,7 +785,9 @@ contains
       end do
    end function springs
 
-   !> Results of every slave node: COPEN = gap, CPRESS = K * overclosure, CSLIP =
+   !> Results of every slave node: COPEN = gap, CPRESS = the balanced normal force
+   !> (set_balanced; the spring's force before it is set) per tributary length and
+   !> thickness, STATUS (2: slid off), CSLIP =
    !> t.(u_s - u_xi) in the displacements `u` with the unit tangent t of the paired
    !> segment (contact_slip); a node without a segment gets CSLIP = 0.
    function table(self, model, u) result(tab)

@@ -3,7 +3,8 @@
 !> Each slave node is projected onto the master surface and each master node onto
 !> the slave face, in the reference configuration; where a projection falls inside
 !> a side (not on one of its end nodes), a new node is inserted there, as one more
-!> vertex of that side's polygon.  A virtual element takes any number of collinear
+!> vertex of that side's polygon, on the curve through the face's vertices (on the
+!> side itself where the face is straight).  A virtual element takes any number of
 !> vertices, so the meshes stay valid and the interface becomes node to node: every
 !> interface node has a partner on the other side at the same tangential position,
 !> and the contact patch test is passed exactly for any mesh on either side
@@ -122,6 +123,8 @@ contains
       call partners(mseg, melem, mside, side_curvature(model%x, mseg), s_on, s_xi, ins, m, s_partner)
       call partners(sseg, selem, sside, side_curvature(model%x, sseg), m_on, m_xi, ins, m, m_partner)
       ins = ins(:m)
+      call check_constrained_sides(model, ins, error)
+      if (allocated(error)) return
       call apply_insertions(model, ins, nadded)
       where (s_partner < 0) s_partner = ins(-s_partner)%node
       where (m_partner < 0) m_partner = ins(-m_partner)%node
@@ -277,6 +280,47 @@ contains
                        'which only virtual elements take: use polygon elements (VPE/VPS) or FORMULATION=VEM '// &
                        'on *SOLID SECTION for both bodies, or TYPE=NODE TO SURFACE', err_input)
    end subroutine check_virtual
+
+   !> Refuse to split a side whose two end nodes carry a *BOUNDARY condition on the
+   !> same dof (before the steps or in the same step): the boundary conditions of node
+   !> sets were resolved to nodes when the deck was read, so the inserted node would be
+   !> free where the user meant the whole side to be held.
+   subroutine check_constrained_sides(model, ins, error)
+      type(model_t), intent(in) :: model
+      type(insertion_t), intent(in) :: ins(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer :: i
+      if (size(ins) == 0) return
+      call check_list(model%initial)
+      if (allocated(error) .or. .not. allocated(model%steps)) return
+      do i = 1, size(model%steps)
+         call check_list(model%steps(i))
+         if (allocated(error)) return
+      end do
+   contains
+      subroutine check_list(st)
+         type(step_t), intent(in) :: st
+         logical, allocatable :: held(:, :)
+         integer :: k
+         if (.not. allocated(st%boundary)) return
+         if (size(st%boundary) == 0) return
+         allocate (held(2, model%nnode), source=.false.)
+         do k = 1, size(st%boundary)
+            held(st%boundary(k)%dof, st%boundary(k)%node) = .true.
+         end do
+         do k = 1, size(ins)
+            if (any(held(:, ins(k)%ends(1)) .and. held(:, ins(k)%ends(2)))) then
+               call fatal_error(error, 'error: a node would be inserted between nodes '// &
+                                itoa(model%node_id(ins(k)%ends(1)))//' and '//itoa(model%node_id(ins(k)%ends(2)))// &
+                                ' (side '//itoa(int(ins(k)%side, ip))//' of element '// &
+                                itoa(model%elem_id(ins(k)%elem))//'), which both carry a *BOUNDARY condition on '// &
+                                'the same dof: the inserted node would be free'//new_line('a')// &
+                                '  = help: hold the side through other nodes, or use TYPE=NODE TO SURFACE', err_input)
+               return
+            end if
+         end do
+      end subroutine check_list
+   end subroutine check_constrained_sides
 
    !> Create the nodes of `ins` (ins%node set; insertions at the same point of a side,
    !> within snap_rel, share one node), put them into their elements between the
@@ -513,8 +557,7 @@ contains
       node = model%elem_conn(p0 + mod(k - 1 + t, int(n)))
    end function side_node
 
-   !> Order of the insertions by element, side and xi (insertion sort per run: few
-   !> insertions share a side).
+   !> Order of the insertions by element, side and xi (a stable merge sort).
    pure function sorted_order(ins) result(order)
       type(insertion_t), intent(in) :: ins(:)
       integer(ip), allocatable :: order(:)

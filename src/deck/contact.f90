@@ -446,7 +446,7 @@ contains
       call before_steps(p, '*CONTACT CONTROLS')
       if (p%controls_loc%file > 0) then
          call err_here(p, 'second *CONTACT CONTROLS (the first is at '//loc_str(p, p%controls_loc)//')', &
-                       'give MAXIT and TOLERANCE on one *CONTACT CONTROLS line')
+                       'give MAXIT, TOLERANCE and STIFFNESS SCALE FACTOR on one *CONTACT CONTROLS line')
          return
       end if
       p%controls_loc = here(p)
@@ -473,12 +473,15 @@ contains
       if (found) then
          call parse_real(squeeze(val), tol, stat)
          if (stat == num_ok) then
-            if (tol >= 1.0e-6_wp .and. tol <= 1.0e6_wp) then
+            ! measured on the contact patch test: 1e-4 converges in 36 iterations and
+            ! 1e-5 not in 50; 1e5 warns of the conditioning and 1e6 stops on it
+            if (tol >= 1.0e-3_wp .and. tol <= 1.0e4_wp) then
                model%controls%stiffness_scale = tol
             else
-               call err_here(p, 'STIFFNESS SCALE FACTOR = '//val//' must lie between 1e-6 and 1e6', &
+               call err_here(p, 'STIFFNESS SCALE FACTOR = '//val//' must lie between 1e-3 and 1e4', &
                              'it scales the internal stiffness of PRESSURE-OVERCLOSURE=HARD contact, '// &
-                             '1e3 E/h by default; the converged pressures do not depend on it')
+                             '1e3 E/h by default; the converged pressures do not depend on it, smaller '// &
+                             'factors need more iterations, larger ones cost conditioning')
             end if
          end if
       end if
@@ -539,7 +542,8 @@ contains
                call err_at(p, model%interactions(iinter)%loc, 'surface interaction '//r%interaction// &
                            ' has no *SURFACE BEHAVIOR (it is used by the contact pair at '// &
                            loc_str(p, r%loc)//')', 'add *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR '// &
-                           'and a data line with the slope K right after *SURFACE INTERACTION')
+                           'and a data line with the slope K, or PRESSURE-OVERCLOSURE=HARD, right after '// &
+                           '*SURFACE INTERACTION')
             end if
             model%pairs(k) = contact_pair_t(slave=islave, master=imaster, interaction=iinter, &
                                             formulation=r%formulation, small_sliding=r%small_sliding, &

@@ -83,7 +83,7 @@ program test_deck_contact_errors
    call expect('beh_tabular', with_block(cb(6, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=TABULAR')), 13, &
                'vemcontact supports PRESSURE-OVERCLOSURE=LINEAR (penalty: p = K * overclosure) and HARD')
    call expect('scale_bad', with_block(cbi(9, '*CONTACT CONTROLS, STIFFNESS SCALE FACTOR=1e9')), 17, &
-               'STIFFNESS SCALE FACTOR = 1e9 must lie between 1e-6 and 1e6')
+               'STIFFNESS SCALE FACTOR = 1e9 must lie between 1e-3 and 1e4')
    call expect('beh_bad', with_block(cb(6, '*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LIN')), 13, &
                'invalid value LIN for parameter PRESSURE-OVERCLOSURE')
    call expect('beh_no_po', with_block(cb(6, '*SURFACE BEHAVIOR')), 13, &
