@@ -16,6 +16,8 @@ import subprocess
 
 import h5py
 import numpy as np
+
+from h5results import contact_iterations, line_search_steps
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -25,19 +27,19 @@ P0 = 83.60  # analytical plane-strain Hertz peak pressure of these decks
 
 
 def run(exe, deck, out):
+    """Run a deck; returns its results file JOB.h5."""
     r = subprocess.run([exe, "-q", "-o", str(out), str(deck)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
-    return (out / (os.path.basename(str(deck))[:-4] + ".log")).read_text()
+    return out / (os.path.basename(str(deck))[:-4] + ".h5")
 
 
-def iterations(log):
-    return [int(m) for m in re.findall(r"contact converged in (\d+) iterations", log)]
+def iterations(h5):
+    return contact_iterations(h5)
 
 
-def steps(log):
-    """Step length (last column) of every iteration line of the log."""
-    return [float(m) for m in re.findall(r"^\s+\d+\s+\d+\s+\d+\s+\S+\s+\S+\s+\S+\s+\S+\s+\S+\s+\S+\s+([0-9.]+)$",
-                                         log, re.M)]
+def steps(h5):
+    """Line search step of every contact iteration (the records in the HDF5 file)."""
+    return line_search_steps(h5)
 
 
 def contact(h5, step="0001"):
@@ -76,9 +78,9 @@ def test_paper_decks(exe, tmp_path, deck):
     from the converged solution, and the pairing hysteresis lets the two iteration
     paths converge to pairings that differ at one node near a master vertex (8e-5 in
     CPRESS for 1155); measured peak differences 1e-6 .. 3e-5."""
-    log = run(exe, os.path.join(ROOT, "inputs", deck + ".inp"), tmp_path)
-    its = iterations(log)
-    s = steps(log)
+    h5 = run(exe, os.path.join(ROOT, "inputs", deck + ".inp"), tmp_path)
+    its = iterations(h5)
+    s = steps(h5)
     print(deck, its, s)
     assert len(its) == 1 and its[0] <= PAPER[deck]
     assert len(s) == its[0] and s[0] < 0.2 and s[-1] == 1.0
@@ -113,11 +115,11 @@ def test_refined_hertz(exe, tmp_path, variant, divisions, max_its, closed):
     same closed nodes as before (13 and 29) and the peak pressure within 0.5% of
     Hertz (measured +0.2%, as before the change: 83.77 and 83.74)."""
     mesh = refined_mesh(tmp_path, variant, divisions)
-    log = run(exe, deck_with("hertz_1155_vem.inp", tmp_path / "d.inp", mesh=mesh), tmp_path)
-    its = iterations(log)
-    print(variant, its, steps(log))
+    h5 = run(exe, deck_with("hertz_1155_vem.inp", tmp_path / "d.inp", mesh=mesh), tmp_path)
+    its = iterations(h5)
+    print(variant, its, steps(h5))
     assert len(its) == 1 and its[0] <= max_its
-    assert "pattern rebuilt" not in log
+    assert "pattern rebuilt" not in h5.with_suffix(".log").read_text()
     p, st = contact(tmp_path / "d.h5")
     assert st.sum() == closed
     assert abs(p.max() / P0 - 1) < 0.005
@@ -129,9 +131,9 @@ def test_softer_penalty(exe, tmp_path, penalty, max_its):
     the 1155 mesh at the residual 1e-8: 5 iterations before, 3 after; at 1e-10: 4 and 3).  The answer is that of a run to the
     residual 1e-12: the same closed nodes, CPRESS within 2e-3 of its maximum (the 1e-8
     stop of the default run: measured 1.3e-3 and 1.6e-3 on the refined meshes)."""
-    log = run(exe, deck_with("hertz_1155_vem.inp", tmp_path / "k.inp", penalty=penalty), tmp_path)
-    its = iterations(log)
-    print(penalty, its, steps(log))
+    h5 = run(exe, deck_with("hertz_1155_vem.inp", tmp_path / "k.inp", penalty=penalty), tmp_path)
+    its = iterations(h5)
+    print(penalty, its, steps(h5))
     assert len(its) == 1 and its[0] <= max_its
     tight = tmp_path / "tight"
     tight.mkdir()
@@ -147,6 +149,6 @@ def test_no_cut_without_new_contact(exe, tmp_path):
     step is a full solve and the counts are those without the line search
     (interface_quad 4 at the residual 1e-10, 3 at 1e-8; dam_joint 2 and 2)."""
     for deck, expect in (("interface_quad", [4]), ("dam_joint", [2, 2])):
-        log = run(exe, os.path.join(ROOT, "inputs", deck + ".inp"), tmp_path)
-        assert iterations(log) == expect
-        assert steps(log) and all(s == 1.0 for s in steps(log))
+        h5 = run(exe, os.path.join(ROOT, "inputs", deck + ".inp"), tmp_path)
+        assert iterations(h5) == expect
+        assert steps(h5) and all(s == 1.0 for s in steps(h5))

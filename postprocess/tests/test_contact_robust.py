@@ -4,12 +4,13 @@ iterations (the iteration on the pairing is a Newton iteration with the geometri
 contact stiffness), and a block slid by several segment lengths along a flat
 surface keeps the exact pressure, with the load following it on the master."""
 import os
-import re
 import subprocess
 import sys
 
 import h5py
 import numpy as np
+
+from h5results import contact_iterations
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -19,13 +20,14 @@ PYTHON_ENV = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "postprocess"))
 
 
 def run(exe, deck, out):
+    """Run a deck; returns its results file JOB.h5."""
     r = subprocess.run([exe, "-q", "-o", str(out), str(deck)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
-    return (out / (deck.stem + ".log")).read_text()
+    return out / (deck.stem + ".h5")
 
 
-def iterations(log_text):
-    return [int(m) for m in re.findall(r"contact converged in (\d+) iterations", log_text)]
+def iterations(h5):
+    return contact_iterations(h5)
 
 
 def read_csv(path):
@@ -102,8 +104,8 @@ def test_fine_nonmatching_interface_converges_fast(exe, tmp_path, interface_mesh
     then quadratic convergence: 3 iterations to the residual 1e-8, 4 to the default 1e-10.
     Measured: [4]."""
     interface_deck(tmp_path / "fs.inp", interface_mesh)
-    log = run(exe, tmp_path / "fs.inp", tmp_path)
-    its = iterations(log)
+    h5 = run(exe, tmp_path / "fs.inp", tmp_path)
+    its = iterations(h5)
     print("finite sliding iterations", its)
     assert len(its) == 1 and its[0] <= 4
     fs = read_csv(tmp_path / "fs_contact_pair1_0001.csv")
@@ -182,8 +184,8 @@ def test_block_slides_several_segments(exe, tmp_path):
                  "*END STEP"]
     deck = tmp_path / "slide.inp"
     deck.write_text("\n".join(text) + "\n")
-    log = run(exe, deck, tmp_path)
-    its = iterations(log)
+    h5 = run(exe, deck, tmp_path)
+    its = iterations(h5)
     print("iterations per step", its)
     assert len(its) == len(SLIDES) and max(its) <= 8
     p = SLIDE_DELTA / (SLIDE_H / SLIDE_E + 1 / SLIDE_K)

@@ -88,14 +88,21 @@ def test_iterations_command(hertz389, tmp_path):
     assert (tmp_path / "i.png").read_bytes()[:8] == PNG
 
 
-def test_bad_input(tmp_path, hertz389):
+def test_bad_input(tmp_path, hertz389, vemcontact):
     one_line_error(run_curves("pressure", str(tmp_path / "none.csv")), "none.csv", "no such file")
     bad = tmp_path / "bad.csv"
     bad.write_text("node,x,y,PRESSURE\n1,0,0,1\n")
     one_line_error(run_curves("pressure", str(bad)), "bad.csv", "COPEN")
+    # the iterations are read from the run's JOB.h5: a run without results, and one
+    # without contact (its results carry no iteration records)
     log = tmp_path / "nolog.log"
     log.write_text("vemcontact 0.1.0: job x\nstep Step-1\n  solve 0.001 s\n")
-    one_line_error(run_curves("iterations", str(log)), "nolog.log", "no contact iterations")
+    one_line_error(run_curves("iterations", str(log)), "nolog.h5", "no such file")
+    nocontact = tmp_path / "nocontact"
+    subprocess.run([vemcontact, "-q", "-o", str(nocontact), os.path.join(ROOT, "inputs", "block_selfweight.inp")],
+                   check=True, capture_output=True)
+    one_line_error(run_curves("iterations", str(nocontact / "block_selfweight.h5")), "block_selfweight.h5",
+                   "no contact iterations")
     one_line_error(run_curves("pressure", str(hertz389), "--hertz", "200,10"), "--hertz", "six numbers")
     one_line_error(run_curves("deflection", str(hertz389)), "not the two-element cantilever")
     r = run_curves("--help")

@@ -169,6 +169,12 @@ contains
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%status, tab%pair == ip_), error)
                if (allocated(error)) return
             end do
+            associate (rec => sys%records)
+               call h5%write_iterations(istep, rec%iteration, rec%active, rec%changed, rec%residual, &
+                                        rec%penetration, rec%pressure, rec%step, merge(1, 0, rec%factorized), &
+                                        rec%time, error)
+            end associate
+            if (allocated(error)) return
             write (buf, '(2x,a,i0,a,i0,a,es12.4,a,es12.4)') 'contact: ', count(contact%active), ' of ', contact%n, &
                ' slave nodes closed, max pressure ', contact%max_pressure(), ', max penetration ', &
                contact%max_penetration()

@@ -42,6 +42,7 @@ module vemcontact_output_hdf5
       procedure :: write_mesh => h5_write_mesh
       procedure :: write_step => h5_write_step
       procedure :: write_contact => h5_write_contact
+      procedure :: write_iterations => h5_write_iterations
       procedure :: close => h5_close
       procedure :: is_open => h5_is_open
       final :: h5_final
@@ -243,6 +244,58 @@ contains
       call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
       if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_contact
+
+   !> Write /steps/NNNN/contact/iterations: one entry per contact iteration of the
+   !> step (the paper's Table 1 and the log's iteration lines): iteration, active
+   !> (closed slave entries), changed, residual (relative), max_penetration,
+   !> max_pressure, step (line search), factorized (1: a numeric factorization was
+   !> paid), time (wall seconds).  Call after write_contact of the step's pairs.
+   subroutine h5_write_iterations(self, istep, iteration, active, changed, residual, penetration, pressure, &
+                                  step, factorized, time, error)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep
+      integer, intent(in) :: iteration(:), active(:), changed(:), factorized(:)
+      real(wp), intent(in) :: residual(:), penetration(:), pressure(:), step(:), time(:)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: gname
+      character(len=24) :: buf
+      integer(hid_t) :: grp
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr
+      logical :: exists
+      if (.not. check_open(self, 'write_iterations', error)) return
+      if (istep <= 9999) then
+         write (buf, '(i4.4)') istep
+      else
+         write (buf, '(i0)') istep
+      end if
+      gname = '/steps/'//trim(buf)//'/contact'
+      call h5lexists_f(self%file, gname, exists, hdferr)
+      if (failed(self, hdferr, 'looking up '//gname, error)) return
+      if (.not. exists) then
+         call h5gcreate_f(self%file, gname, grp, hdferr)
+         if (failed(self, hdferr, 'creating group '//gname, error)) return
+         call h5gclose_f(grp, hdferr)
+      end if
+      gname = gname//'/iterations'
+      call h5gcreate_f(self%file, gname, grp, hdferr)
+      if (failed(self, hdferr, 'creating group '//gname, error)) return
+      dims = size(iteration, kind=hsize_t)
+      call put_int(self, grp, 'iteration', dims, int(iteration, ip), error)
+      if (.not. allocated(error)) call put_int(self, grp, 'active', dims, int(active, ip), error)
+      if (.not. allocated(error)) call put_int(self, grp, 'changed', dims, int(changed, ip), error)
+      if (.not. allocated(error)) call put_real(self, grp, 'residual', dims, residual, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'max_penetration', dims, penetration, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'max_pressure', dims, pressure, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'step', dims, step, error)
+      if (.not. allocated(error)) call put_int(self, grp, 'factorized', dims, int(factorized, ip), error)
+      if (.not. allocated(error)) call put_real(self, grp, 'time', dims, time, error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group '//gname, error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing after '//gname, error)) return
+   end subroutine h5_write_iterations
 
    !> Close the file (nothing if not open).  Without `error`, a failure to close is
    !> ignored: use the argument where the file's completeness matters.

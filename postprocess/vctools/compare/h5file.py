@@ -129,7 +129,9 @@ def _read_open(path, f) -> Results:
         if isinstance(c, h5py.Group):
             for pk in c:
                 pg = c[pk]
-                if isinstance(pg, h5py.Group):
+                # pair_K groups; /contact/iterations holds the iteration records, which
+                # depend on the path to the answer, not on the answer: not compared
+                if isinstance(pg, h5py.Group) and pk.startswith("pair_"):
                     pairs[pk] = Pair(pk, {n: pg[n][()] for n in CONTACT_DATASETS
                                           if isinstance(pg.get(n), h5py.Dataset)})
         number = int(key)

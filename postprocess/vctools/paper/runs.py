@@ -20,6 +20,7 @@ import os
 import re
 from dataclasses import dataclass, field
 
+import h5py
 import numpy as np
 
 from vctools.plot.results import ResultError
@@ -201,44 +202,37 @@ def log_file(path: str) -> str:
     return path
 
 
-_ITER_RE = re.compile(r"^\s*(\d+)\s+(\d+)\s+(\d+)\s+(\S+)\s+(\S+)\s+(\S+)(\s+\S+)*\s*$")
 
 
 def read_log(path: str) -> LogSteps:
-    """The active-set iterations of every step of JOB.log (or of a run folder)."""
-    f = log_file(path)
-    try:
-        with open(f, errors="replace") as fh:
-            lines = fh.read().splitlines()
-    except OSError as exc:
-        raise ResultError(f"{f}: cannot be read ({exc.strerror})") from None
+    """The contact iterations of every step of a run (a run folder, its JOB.h5 or its
+    JOB.log): the records vemcontact writes into /steps/NNNN/contact/iterations of
+    JOB.h5 (docs/output-format.md), not the log's text."""
+    if os.path.isdir(path):
+        f = os.path.join(path, job_name(path) + ".h5")
+    else:
+        f = os.path.splitext(path)[0] + ".h5"
+    if not os.path.exists(f):
+        raise ResultError(f"{f}: no such file (the results of the run)")
     out = LogSteps(path=f, job=os.path.splitext(os.path.basename(f))[0])
-    name, its, in_table = None, [], False
-    for line in lines:
-        s = line.strip()
-        if line.startswith("step "):
-            if its:
-                out.steps.append((name, its, False))
-            name, its, in_table = line[5:].strip(), [], False
-        elif s.startswith("iter") and "active" in s:
-            in_table = True
-        elif in_table:
-            m = _ITER_RE.match(line)
-            if m:
-                try:
-                    its.append(Iteration(int(m.group(1)), int(m.group(2)), int(m.group(3)),
-                                         float(m.group(4)), float(m.group(5)), float(m.group(6))))
+    try:
+        with h5py.File(f, "r") as h:
+            for key in sorted(h["steps"]):
+                st = h["steps"][key]
+                g = st.get("contact/iterations")
+                if g is None:
                     continue
-                except ValueError:
-                    pass
-            in_table = False
-            if its and "converged" in s:
-                out.steps.append((name, its, "not converged" not in s))
-                its = []
-    if its:
-        out.steps.append((name, its, False))
+                name = st.attrs.get("name", key)
+                name = name.decode() if isinstance(name, bytes) else str(name)
+                its = [Iteration(int(i), int(a), int(c), float(r), float(pen), float(pr))
+                       for i, a, c, r, pen, pr in zip(g["iteration"], g["active"], g["changed"], g["residual"],
+                                                      g["max_penetration"], g["max_pressure"])]
+                # a step is written only once its contact iterations have converged
+                out.steps.append((name, its, True))
+    except OSError as exc:
+        raise ResultError(f"{f}: cannot be read ({exc})") from None
     if not out.steps:
-        raise ResultError(f"{f}: no contact iterations in this log (no contact pair, or not a vemcontact log)")
+        raise ResultError(f"{f}: no contact iterations in this run (no contact pair)")
     return out
 
 

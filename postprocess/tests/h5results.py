@@ -1,0 +1,32 @@
+"""Reading the contact iteration records that vemcontact writes into JOB.h5
+(/steps/NNNN/contact/iterations, docs/output-format.md), for the tests."""
+import h5py
+import numpy as np
+
+
+def iteration_records(h5_path):
+    """Per step with contact iterations (in step order): a dict of the record arrays
+    (iteration, active, changed, residual, max_penetration, max_pressure, step,
+    factorized, time)."""
+    out = []
+    with h5py.File(h5_path, "r") as f:
+        for key in sorted(f["steps"]):
+            g = f["steps"][key].get("contact/iterations")
+            if g is not None:
+                out.append({name: np.array(g[name]) for name in g})
+    return out
+
+
+def contact_iterations(h5_path):
+    """The number of contact iterations of every step with contact."""
+    return [int(r["iteration"].size) for r in iteration_records(h5_path)]
+
+
+def line_search_steps(h5_path):
+    """The line search step of every iteration of every step, in order."""
+    return [float(s) for r in iteration_records(h5_path) for s in r["step"]]
+
+
+def factorizations(h5_path):
+    """The number of numeric factorizations of every step with contact."""
+    return [int(r["factorized"].sum()) for r in iteration_records(h5_path)]
