@@ -89,8 +89,9 @@ def snapshot_exe(work):
 
 def source_state():
     try:
-        head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
-                              text=True).stdout.strip()
+        # the last commit that changed the code (commits to bench/ or docs/ do not change the runs)
+        head = subprocess.run(["git", "-C", ROOT, "log", "-1", "--format=%h", "--", "src", "CMakeLists.txt", "cmake"],
+                              capture_output=True, text=True).stdout.strip()
         dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "src", "CMakeLists.txt"],
                                capture_output=True, text=True).stdout.strip()
         return f"commit {head}" + (" with uncommitted changes in src/" if dirty else "")
