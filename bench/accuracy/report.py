@@ -614,9 +614,26 @@ SUMMARY_TEMPLATE = """\
   4; a known weakness, docs/status.md). It is recorded as a failed run above. The coarser
   Voronoi meshes converge in 3-4 (penalty) and 9-10 (HARD) iterations. SURFACE TO SURFACE
   converges on the same mesh in 3 iterations with one factorization.
-- On the finest structured VEM quads (1.3·10^5 unknowns) node to surface with finite
-  sliding: see the robustness table (the Newton steps on the pairing diverge and the code
-  drops the geometric part for the step, "fallbacks").
+  How they fail differs: the penalty run drops the geometric part once (one fallback)
+  and then cycles (relative residual 1.2e-4 at iteration 50); the NTS HARD run has no
+  fallback and cycles with a period of about 10 iterations between active sets of 236 to
+  298 of its nodes, with a maximum pressure of 1.2e11 where the answer is 6.7e7 (a wrong
+  state, not a slow convergence).
+- On the finest structured quads (1.3·10^5 unknowns) node to surface with finite sliding
+  drops the geometric part of the pairing once (the Newton steps diverge, "fallbacks"
+  in the robustness table) and then converges as a fixed point: the penalty in 44
+  iterations (VEM; FEM quads 10, without fallback), NTS HARD **not at all** within 50
+  iterations (VEM and FEM quads): after the fallback the augmented-Lagrangian updates
+  converge linearly, the penetration halving about every 2 iterations (1e-13 at
+  iteration 50, relative residual 1e-13, the pressures still changing by more than the
+  tolerance), exit status 4. SURFACE TO SURFACE converges on the same meshes in 3
+  iterations with one factorization.
+- With NTS HARD every iteration is a numeric factorization (finite sliding: the pairing
+  and the Newton part change each iteration), and the augmented-Lagrangian updates add
+  iterations: 6-13 per increment where the penalty needs 3-5, so NTS HARD costs 1.5-3
+  times the penalty's run time at the same mesh (tables above). With `SMALL SLIDING`
+  the pairing is fixed and the updates only re-solve (docs/performance.md, "Contact
+  formulations").
 - Small runs (< 0.05 s) are dominated by fixed costs and by the noise of the shared
   machine: their time ratios mean little. The runs of a study take turns on one core;
   other jobs on the machine add noise that the median of the repeats only partly removes.
