@@ -19,6 +19,36 @@ FAMILIES = ("vem-voronoi", "vem-quad", "fem-quad", "fem-tri")
 FORMULATION = {"vem-voronoi": "VEM", "vem-quad": "VEM", "fem-quad": "FEM", "fem-tri": "FEM"}
 SHAPE = {"vem-voronoi": "voronoi", "vem-quad": "quad", "fem-quad": "quad", "fem-tri": "tri"}
 
+# Contact formulations of the contact cases (Hertz, interface): a family "base+variant"
+# runs the base family's mesh with that formulation; the plain base family is the
+# node-to-segment penalty of the paper (LINEAR, the deck's K).
+#   nts-hard  TYPE=NODE TO SURFACE, PRESSURE-OVERCLOSURE=HARD (augmented Lagrangian)
+#   s2s-hard  TYPE=SURFACE TO SURFACE (interface nodes inserted, VEM only), HARD
+CONTACT_VARIANTS = {"": ("NODE TO SURFACE", "LINEAR"), "nts-hard": ("NODE TO SURFACE", "HARD"),
+                    "s2s-hard": ("SURFACE TO SURFACE", "HARD")}
+
+
+def split_family(fam):
+    """'vem-quad+s2s-hard' -> ('vem-quad', 's2s-hard'); 'vem-quad' -> ('vem-quad', '')."""
+    base, _, var = fam.partition("+")
+    return base, var
+
+
+def contact_deck(deck, variant):
+    """The deck with the contact formulation of `variant` (the penalty deck unchanged for
+    ''): the pair's TYPE, and HARD without the data line of LINEAR."""
+    if not variant:
+        return deck
+    ctype, behavior = CONTACT_VARIANTS[variant]
+    deck = deck.replace("TYPE=NODE TO SURFACE", f"TYPE={ctype}")
+    if behavior == "HARD":
+        lines = deck.split("\n")
+        i = next(k for k, ln in enumerate(lines) if ln.upper().startswith("*SURFACE BEHAVIOR"))
+        lines[i] = "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD"
+        del lines[i + 1]                                      # the LINEAR slope K
+        deck = "\n".join(lines)
+    return deck
+
 
 class Run:
     def __init__(self, case, family, level, mesh_desc, deck, metrics, elements=None):
@@ -214,6 +244,7 @@ def lame(work, quick=False):
 
 # ----------------------------------------------------------------- Hertz
 HERTZ_P0, HERTZ_A = 83.60, 1.523
+HERTZ_FAMILIES = ("vem-quad", "vem-quad+nts-hard", "vem-quad+s2s-hard", "fem-quad", "fem-quad+nts-hard", "fem-tri")
 HERTZ_SCENE = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex2_hertz.toml")).read().split("[[variant]]")[0]
 
 
@@ -230,8 +261,9 @@ def hertz(work, quick=False):
     if quick:
         levels = levels[:3]
     deck_text = open(os.path.join(meshes.ROOT, "inputs/hertz_1155_vem.inp")).read()
-    for fam in ("vem-quad", "fem-quad", "fem-tri"):
-        shape = SHAPE[fam]
+    for fam in HERTZ_FAMILIES:
+        base, variant = split_family(fam)
+        shape = SHAPE[base]
         for name, dd, bd in levels:
             toml = HERTZ_SCENE.replace('mesher = "quad"', f'mesher = "{shape}"')
             toml = toml.replace("divisions = [12, 12, 6]", f"divisions = {list(dd)}")
@@ -239,7 +271,8 @@ def hertz(work, quick=False):
             mp = meshes.mesher(toml, f"hz_{shape}_{name}", work + "/meshes")
             m = meshes.read_inp(mp)
             deck = deck_text.replace("meshes/ex2_hertz_1155_vem.inp", _rel_include(work + "/decks", mp))
-            deck = deck.replace("FORMULATION=VEM", f"FORMULATION={FORMULATION[fam]}")
+            deck = deck.replace("FORMULATION=VEM", f"FORMULATION={FORMULATION[base]}")
+            deck = contact_deck(deck, variant)
             desc = f"disc {dd}, block {bd[0]}x{bd[1]} {'quads' if shape == 'quad' else 'split quads'}"
 
             def metrics(res):
@@ -261,11 +294,16 @@ def hertz(work, quick=False):
 IF_E, IF_NU, IF_K, IF_D = 1.0e9, 0.3, 1.0e12, 0.1
 
 
-def interface_exact():
+IF_FAMILIES = ("vem-voronoi", "vem-voronoi+nts-hard", "vem-voronoi+s2s-hard", "vem-quad", "vem-quad+nts-hard",
+               "vem-quad+s2s-hard", "fem-quad", "fem-quad+nts-hard", "fem-tri")
+
+
+def interface_exact(hard=False):
     """Both blocks in uniaxial strain (rollers on the sides): sigma_yy = -p with
-    2 p/E' + p/K = 0.1, E' = E(1-nu)/((1+nu)(1-2nu)); sigma_xx = sigma_zz = nu/(1-nu) sigma_yy."""
+    2 p/E' + p/K = 0.1, E' = E(1-nu)/((1+nu)(1-2nu)); sigma_xx = sigma_zz = nu/(1-nu) sigma_yy.
+    HARD contact has no overclosure: 1/K = 0."""
     Ep = IF_E * (1 - IF_NU) / ((1 + IF_NU) * (1 - 2 * IF_NU))
-    return IF_D / (2 / Ep + 1 / IF_K)
+    return IF_D / (2 / Ep + (0.0 if hard else 1 / IF_K))
 
 
 def interface(work, quick=False):
@@ -275,10 +313,11 @@ def interface(work, quick=False):
     pressure p = 0.1/(2/E' + 1/K).  The paper's decks clamp the top and bottom in x
     and leave the sides free, which has end effects and no closed form."""
     scene = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex3_interface.toml")).read().split("[[variant]]")[0]
-    p = interface_exact()
     ks = [1, 2, 4, 8, 16] if not quick else [1, 2]
-    for fam in FAMILIES:
-        shape = SHAPE[fam]
+    for fam in IF_FAMILIES:
+        base, variant = split_family(fam)
+        shape = SHAPE[base]
+        p = interface_exact(hard=CONTACT_VARIANTS[variant][1] == "HARD")
         for k in ks:
             toml = scene
             if shape == "voronoi":
@@ -297,12 +336,13 @@ def interface(work, quick=False):
             deck = (f"** accuracy study (bench/accuracy): interface under uniform compression, rollers\n"
                     f"*HEADING\ninterface, uniaxial strain\n*INCLUDE, INPUT={_rel_include(work + '/decks', mp)}\n"
                     f"*MATERIAL, NAME=ROCK\n*ELASTIC\n{IF_E!r}, {IF_NU!r}\n"
-                    f"*SOLID SECTION, ELSET=LOWER, MATERIAL=ROCK, FORMULATION={FORMULATION[fam]}\n1.0\n"
-                    f"*SOLID SECTION, ELSET=UPPER, MATERIAL=ROCK, FORMULATION={FORMULATION[fam]}\n1.0\n"
+                    f"*SOLID SECTION, ELSET=LOWER, MATERIAL=ROCK, FORMULATION={FORMULATION[base]}\n1.0\n"
+                    f"*SOLID SECTION, ELSET=UPPER, MATERIAL=ROCK, FORMULATION={FORMULATION[base]}\n1.0\n"
                     f"*SURFACE INTERACTION, NAME=INTERFACE\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
                     f"{IF_K!r}\n*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=NODE TO SURFACE\n"
                     f"IFACE_SLAVE, IFACE_MASTER\n*BOUNDARY\nBOTTOM, 1, 2\nTOP, 1\nLEFT, 1\nRIGHT, 1\n"
                     f"*STEP, NAME=COMPRESSION\n*STATIC\n*BOUNDARY\nTOP, 2, 2, {-IF_D!r}\n*END STEP\n")
+            deck = contact_deck(deck, variant)
 
             def metrics(res, p=p):
                 c = res["contact"]

@@ -10,15 +10,49 @@ import numpy as np
 import meshes
 
 ROOT = meshes.ROOT
-ROUNDOFF = 1e-11      # errors below this are round-off: the exact answer is in the discrete space
+ROUNDOFF = 1e-9       # errors below this are round-off: the exact answer is in the discrete space (the
+                      # smallest discretization error of the study is 6e-6; S2S interface pressures reach 3e-10)
 
 
 def _ok(v):
     return math.isfinite(v) and v > ROUNDOFF
-FAMILY_LABEL = {"vem-voronoi": "VEM, Voronoi", "vem-quad": "VEM, quads", "fem-quad": "FEM quads (Q4)",
-                "fem-tri": "FEM triangles (T3)"}
-STYLE = {"vem-voronoi": ("tab:green", "o"), "vem-quad": ("tab:blue", "s"), "fem-quad": ("tab:orange", "D"),
-         "fem-tri": ("tab:red", "^")}
+BASE_LABEL = {"vem-voronoi": "VEM, Voronoi", "vem-quad": "VEM, quads", "fem-quad": "FEM quads (Q4)",
+              "fem-tri": "FEM triangles (T3)"}
+BASE_STYLE = {"vem-voronoi": ("tab:green", "o"), "vem-quad": ("tab:blue", "s"), "fem-quad": ("tab:orange", "D"),
+              "fem-tri": ("tab:red", "^")}
+CONTACT_CASES = ("hertz", "interface")
+# contact formulations (cases.CONTACT_VARIANTS): label and line style
+VARIANT_LABEL = {"": "NTS penalty", "nts-hard": "NTS HARD", "s2s-hard": "S2S HARD"}
+VARIANT_LINE = {"": "-", "nts-hard": "--", "s2s-hard": ":"}
+MAX_ITERATIONS = 10     # the robustness target: iterations per increment
+
+
+def _split(fam):
+    base, _, var = fam.partition("+")
+    return base, var
+
+
+class _Labels(dict):
+    """FAMILY_LABEL[fam]: 'VEM, quads' for the linear cases' families, 'VEM, quads, S2S HARD'
+    for a contact formulation; the plain family of a contact case is labelled by flabel."""
+    def __missing__(self, fam):
+        base, var = _split(fam)
+        return BASE_LABEL[base] + (f", {VARIANT_LABEL[var]}" if var else "")
+
+
+FAMILY_LABEL = _Labels()
+
+
+def flabel(fam, case=None):
+    base, var = _split(fam)
+    if case in CONTACT_CASES:
+        return f"{BASE_LABEL[base]}, {VARIANT_LABEL[var]}"
+    return FAMILY_LABEL[fam]
+
+
+def style(fam):
+    base, var = _split(fam)
+    return BASE_STYLE[base] + (VARIANT_LINE[var],)
 
 # per case: primary metric, other metrics, their labels
 METRICS = {
@@ -83,17 +117,27 @@ def figure(case, rows, path):
     import matplotlib.pyplot as plt
     prim, others = METRICS[case]
     mets = [prim] + others[:1]
-    fig, axs = plt.subplots(len(mets), 2, figsize=(10, 3.6 * len(mets)), squeeze=False)
+    big = case in CONTACT_CASES
+    fig, axs = plt.subplots(len(mets), 2, figsize=(12 if big else 10, (4.6 if big else 3.6) * len(mets)),
+                            squeeze=False)
     for i, m in enumerate(mets):
         for fam in _families(rows):
             rs = [r for r in rows if r["family"] == fam and _ok(r[m])]
+            ro = [r for r in rows if r["family"] == fam and math.isfinite(r[m]) and not _ok(r[m])]
+            if ro and case in CONTACT_CASES:
+                # exact to round-off (S2S on the interface): drawn at the round-off line
+                c, mk, ls = style(fam)
+                for j, key in enumerate(("unknowns", "time_s")):
+                    axs[i, j].loglog([r[key] for r in ro], [ROUNDOFF] * len(ro), marker=mk, color=c, ls=ls, ms=5,
+                                     mfc="none", label=f"{flabel(fam, case)}: round-off, drawn at {ROUNDOFF:.0e}")
             if not rs:
                 continue
-            c, mk = STYLE[fam]
-            lab = f"{FAMILY_LABEL[fam]} (rate {rate(rs, m):.2f})"
-            axs[i, 0].loglog([r["unknowns"] for r in rs], [r[m] for r in rs], marker=mk, color=c, label=lab, ms=4)
-            axs[i, 1].loglog([r["time_s"] for r in rs], [r[m] for r in rs], marker=mk, color=c,
-                             label=FAMILY_LABEL[fam], ms=4)
+            c, mk, ls = style(fam)
+            lab = f"{flabel(fam, case)} (rate {rate(rs, m):.2f})"
+            axs[i, 0].loglog([r["unknowns"] for r in rs], [r[m] for r in rs], marker=mk, color=c, ls=ls, label=lab,
+                             ms=4)
+            axs[i, 1].loglog([r["time_s"] for r in rs], [r[m] for r in rs], marker=mk, color=c, ls=ls,
+                             label=flabel(fam, case), ms=4)
         front = pareto([(r["time_s"], r[m]) for r in rows if _ok(r[m])])
         if front:
             t, e = zip(*front)
@@ -127,21 +171,28 @@ def table(case, rows):
     prim, others = METRICS[case]
     mets = [prim] + others
     head = ["family", "level", "mesh", "unknowns", "time [s]"] + [SHORT[m] for m in mets]
-    if case in ("hertz", "interface"):
-        head.insert(5, "iter.")
+    if case in CONTACT_CASES:
+        head[5:5] = ["iter.", "fact."]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * 3 + "---:|" * (len(head) - 3)]
     for r in rows:
         failed = str(r.get("status", "ok")) != "ok"
-        cells = [FAMILY_LABEL[r["family"]], str(r["level"]), r["mesh"], _fmt_int(r["unknowns"]),
+        cells = [flabel(r["family"], case), str(r["level"]), r["mesh"], _fmt_int(r["unknowns"]),
                  "-" if failed else f"{r['time_s']:.3g}"]
-        if case in ("hertz", "interface"):
-            cells.append("-" if failed else str(int(r["contact_iterations"])))
+        if case in CONTACT_CASES:
+            cells += [_int(r.get("contact_iterations")), _int(r.get("factorizations"))]
         if failed:
             cells += [f"**{r['status']}**"] + [""] * (len(mets) - 1)
         else:
             cells += [_pct(r[m]) for m in mets]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
+
+
+def _int(v):
+    try:
+        return str(int(v)) if math.isfinite(float(v)) else "-"
+    except (TypeError, ValueError):
+        return "-"
 
 
 def _rate_txt(v):
@@ -155,7 +206,7 @@ def rates_table(case, rows):
              "|---|" + "---:|" * len(mets)]
     for fam in _families(rows):
         rs = [r for r in rows if r["family"] == fam]
-        lines.append(f"| {FAMILY_LABEL[fam]} | " + " | ".join(_rate_txt(rate(rs, m)) for m in mets) + " |")
+        lines.append(f"| {flabel(fam, case)} | " + " | ".join(_rate_txt(rate(rs, m)) for m in mets) + " |")
     return "\n".join(lines)
 
 
@@ -191,20 +242,24 @@ def recommendation(case, rows):
             rs = [r for r in rows if r["family"] == fam]
             b = cheapest(rs, prim, target)
             if b:
-                per.append(f"{FAMILY_LABEL[fam]}: {b['mesh']} ({_fmt_int(b['unknowns'])} unknowns, "
+                per.append(f"{flabel(fam, case)}: {b['mesh']} ({_fmt_int(b['unknowns'])} unknowns, "
                            f"{b['time_s']:.3g} s)")
             else:
                 ex = extrapolate(rs, prim, target)
-                finest = min((r for r in rs if math.isfinite(r[prim])), key=lambda r: r[prim])
+                done = [r for r in rs if math.isfinite(r[prim])]
+                if not done:
+                    per.append(f"{flabel(fam, case)}: every run failed")
+                    continue
+                finest = min(done, key=lambda r: r[prim])
                 if ex and ex[0] < 1e8:
-                    per.append(f"{FAMILY_LABEL[fam]}: not reached (best {_pct(finest[prim])} at "
+                    per.append(f"{flabel(fam, case)}: not reached (best {_pct(finest[prim])} at "
                                f"{_fmt_int(finest['unknowns'])} unknowns); the trend of the finest levels "
                                f"extrapolates to about {ex[0]:.2g} unknowns, {ex[1]:.2g} s")
                 else:
-                    per.append(f"{FAMILY_LABEL[fam]}: not reached (best {_pct(finest[prim])} at "
+                    per.append(f"{flabel(fam, case)}: not reached (best {_pct(finest[prim])} at "
                                f"{_fmt_int(finest['unknowns'])} unknowns) and the error no longer decreases")
         if best:
-            head = (f"**{name}** ({LABEL[prim]}): cheapest is **{FAMILY_LABEL[best['family']]}, {best['mesh']}** "
+            head = (f"**{name}** ({LABEL[prim]}): cheapest is **{flabel(best['family'], case)}, {best['mesh']}** "
                     f"({_fmt_int(best['unknowns'])} unknowns, {best['time_s']:.3g} s).")
         else:
             head = f"**{name}** ({LABEL[prim]}): **no family reaches it** within the meshes run."
@@ -270,7 +325,17 @@ overclosure of ~8e-4 (0.05 % of a), so the discrete peak converges to a value sl
 off 83.60 and the error against 83.60 levels off: that floor is a modelling error, not
 a discretization error. The half-width is the a of a least-squares fit of
 p^2 = p0^2 (1 - x^2/a^2) to the slave nodes with p > 0.3 p_max. VEM on Voronoi is not
-run: the mesher meshes the half-disc only with structured quads/triangles.""",
+run: the mesher meshes the half-disc only with structured quads/triangles.
+
+**Contact formulations.** *NTS penalty* is the paper's deck: `TYPE=NODE TO SURFACE`
+(node to segment, finite sliding), `PRESSURE-OVERCLOSURE=LINEAR` with K = 1e5.
+*NTS HARD* is the same pair with `PRESSURE-OVERCLOSURE=HARD` (augmented Lagrangian, no
+overclosure; internal stiffness K h/E = 1e3). *S2S HARD* is `TYPE=SURFACE TO SURFACE`
+(each side's interface nodes inserted into the other side's VEM polygons, node-to-node
+contact with the pairing fixed at the start) with HARD; VEM only (FEM bodies are refused),
+so the inserted nodes add a few unknowns (the unknowns column counts them). CPRESS is the
+force the solution balances over the tributary length of each slave node (inserted ones
+included).""",
     "interface": """\
 **Set-up.** The paper's example 3 as in `inputs/interface_*` (blocks [0,4]×[0,1] and
 [0,4]×[1,2] meshed independently, non-matching at y = 1; E = 1e9, nu = 0.3, plane
@@ -283,11 +348,72 @@ for every k), triangles split from them, Voronoi with 100 k^2 cells per block. T
 exact solution is linear in each block, so every element represents it: what remains
 is the error of the node-to-segment transfer across non-matching meshes. Metrics: the
 largest and the RMS relative deviation of CPRESS from p over the slave nodes, and the
-largest relative deviation of the element sigma_yy from -p.""",
+largest relative deviation of the element sigma_yy from -p.
+
+**Contact formulations.** *NTS penalty* as above (K = 1e12); *NTS HARD*: the same pair
+with `PRESSURE-OVERCLOSURE=HARD` (augmented Lagrangian, no overclosure), measured against
+the exact p = 0.1 E'/2 = 6.7308e7 of an interface without compliance; *S2S HARD*:
+`TYPE=SURFACE TO SURFACE` with HARD (interface nodes of each block inserted into the other
+block's polygons, node-to-node pairs fixed at the start; VEM only, so VEM on Voronoi and
+VEM on quads), against the same p. S2S passes the contact patch test on non-matching
+meshes: errors at round-off ("round-off" in the tables, below 1e-9) at every level.""",
 }
 
 
-def write(rows, machine, elapsed, repeat, figdir=None, doc=None):
+def _sources_text(sources):
+    """Which run each case comes from, when they differ (a --cases rerun keeps the others)."""
+    if not sources:
+        return ""
+    groups = {}
+    for case, src in sources.items():
+        groups.setdefault(src, []).append(case)
+    if len(groups) < 2:
+        return ""
+    return " Cases by run: " + "; ".join(f"{', '.join(cs)}: {src}" for src, cs in groups.items()) + "."
+
+
+def robustness(rows):
+    """The robustness target of the contact formulations: every contact run converges in at
+    most MAX_ITERATIONS iterations per increment without the fallback to the frozen
+    pairing; the factorizations against the iterations (an iteration whose matrix did not
+    change only re-solves)."""
+    lines = ["| case | formulation | family | finest levels: unknowns | iterations per increment | "
+             "numeric factorizations | re-solves only | fallbacks | verdict |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    verdicts = []
+    for case in CONTACT_CASES:
+        rs = [r for r in rows if r["case"] == case]
+        for fam in _families(rs):
+            fr = [r for r in rs if r["family"] == fam]
+            base, var = _split(fam)
+            unk, its, fac, res, fb, bad = [], [], [], [], [], []
+            for r in fr[-3:]:                     # the three finest levels run
+                failed = str(r.get("status", "ok")) != "ok"
+                unk.append(_fmt_int(r["unknowns"]))
+                it = r.get("contact_iterations", float("nan"))
+                f = r.get("factorizations", float("nan"))
+                its.append(("**" + _int(it) + " (failed)**") if failed else
+                           (f"**{_int(it)}**" if math.isfinite(it) and it > MAX_ITERATIONS else _int(it)))
+                fac.append(_int(f))
+                tot = r.get("iterations_total", it)
+                res.append(_int(tot - f) if math.isfinite(tot) and math.isfinite(f) else "-")
+                nfb = r.get("fallbacks", 0)
+                fb.append(_int(nfb))
+                if failed:
+                    bad.append(f"{r['level']}: {r['status'].replace('failed: ', '')[:90]}")
+                elif it > MAX_ITERATIONS or (math.isfinite(nfb) and nfb > 0):
+                    bad.append(f"{r['level']}: {_int(it)} iterations" + (f", {_int(nfb)} fallbacks" if nfb else ""))
+            allbad = [r for r in fr if str(r.get("status", "ok")) != "ok" or r.get("contact_iterations", 0) >
+                      MAX_ITERATIONS or r.get("fallbacks", 0) > 0]
+            verdict = "meets" if not allbad else "**misses** (" + "; ".join(
+                f"{r['level']}" for r in allbad) + ")"
+            verdicts.append((case, fam, not allbad))
+            lines.append(f"| {case} | {VARIANT_LABEL[var]} | {BASE_LABEL[base]} | {' / '.join(unk)} | "
+                         f"{' / '.join(its)} | {' / '.join(fac)} | {' / '.join(res)} | {' / '.join(fb)} | {verdict} |")
+    return "\n".join(lines), verdicts
+
+
+def write(rows, machine, elapsed, repeat, figdir=None, doc=None, sources=None):
     figdir = figdir or os.path.join(ROOT, "docs", "figures")
     doc = doc or os.path.join(ROOT, "docs", "accuracy-vs-speed.md")
     os.makedirs(figdir, exist_ok=True)
@@ -299,7 +425,10 @@ def write(rows, machine, elapsed, repeat, figdir=None, doc=None):
     parts = [f"""# Accuracy against cost
 
 How accurate is each discretization for the work it costs? Five cases with known
-answers, four families, mesh sequences from coarse to about 10^5 to 5·10^5 unknowns:
+answers, four families, mesh sequences from coarse to about 10^5 to 5·10^5 unknowns;
+the two contact cases (Hertz, interface) compare three contact formulations as well
+(node to surface with penalty or HARD, surface to surface with HARD; see their sections
+and the robustness table at the end):
 
 | family | formulation | mesh |
 |---|---|---|
@@ -315,7 +444,7 @@ below, plus 2-3 minutes of Voronoi meshing the first time):
 
 It builds the Release executable if needed, writes the meshes and decks to
 `out/accuracy/` (meshes are cached there: delete the folder to rebuild them), runs every
-deck {repeat} times, measures the errors from the HDF5 output, and writes
+deck {repeat} times (3 times when a run takes more than 5 s), measures the errors from the HDF5 output, and writes
 `bench/results/accuracy.csv` (one row per case, family and mesh: unknowns, median time,
 errors), `bench/results/accuracy_runs.csv` (every timing), the figures
 `docs/figures/accuracy_<case>.png` and this document. `--cases hertz,lame` reruns some cases (the others are taken from
@@ -325,7 +454,7 @@ coarse levels, two repeats, output under `out/accuracy/`). Sources: `bench/accur
 (`cases.py`: set-ups and decks, `fields.py`: exact fields and norms, `meshes.py`,
 `report.py`).
 
-**Machine:** {machine}. Release build (`scripts/build.sh Release`), one vemcontact
+**Machine:** {machine}.{_sources_text(sources)} Release build (`scripts/build.sh Release`), one vemcontact
 process at a time. The machine is shared and noisy: times below 0.05 s are dominated by
 fixed costs (HDF5 set-up, file output) and their ratios mean little.
 
@@ -375,14 +504,45 @@ three finest levels is extrapolated and marked as such.
         cells = []
         for target in (1e-2, 1e-3):
             b = cheapest(rs, prim, target)
-            cells.append(f"{FAMILY_LABEL[b['family']]}, {b['mesh']}: {_fmt_int(b['unknowns'])} unknowns, "
+            cells.append(f"{flabel(b['family'], case)}, {b['mesh']}: {_fmt_int(b['unknowns'])} unknowns, "
                          f"{b['time_s']:.3g} s" if b else "not reached")
         lines.append(f"| {case} | {LABEL[prim]} | {cells[0]} | {cells[1]} |")
     parts.append("\n".join(lines) + "\n")
+    if any(r["case"] in CONTACT_CASES for r in rows):
+        tab, verdicts = robustness(rows)
+        parts.append(ROBUSTNESS_TEXT.format(maxit=MAX_ITERATIONS, table=tab,
+                                            met=sum(v for *_, v in verdicts), n=len(verdicts)))
     parts.append(SUMMARY_TEMPLATE)
     with open(doc, "w") as f:
         f.write("\n".join(parts))
     print(f"wrote {doc} and {len(case_names)} figures in {figdir}")
+
+
+ROBUSTNESS_TEXT = """\
+## Contact iterations and factorizations: the robustness target
+
+Target (the contact formulations issue): every contact case, including the finest
+non-matching interfaces, converges in at most {maxit} iterations per increment without a
+fallback, and no numeric factorization happens when the matrix has not changed. Measured
+from each run's log (`bench/accuracy/main.py`, `contact_stats`; every deck here has one
+step, one increment): *iterations per increment* is the largest 'contact converged in N
+iterations' of the run, *numeric factorizations* the F of '(F numeric factorizations)',
+*re-solves only* the iterations that reused the factor (N - F), *fallbacks* the lines
+'(geometric contact stiffness off for this step: ...)' (the frozen-pairing fallback of
+node-to-segment with finite sliding). The three finest levels of each family and
+formulation, separated by ' / '; a run that failed stops its family. The verdict is over
+all levels of the family.
+
+{table}
+
+{met} of {n} family/formulation combinations meet the target on every level. The code
+refactorizes only when the active set, the pairing (segment, xi, normal) or the
+geometric (Newton) part changed (`same_key` in `src/driver/linear.f90`): with node to
+surface and finite sliding the pairing follows the deformation and the Newton part is on
+once the active set has settled, so every iteration factorizes (N = F) although the
+active set no longer changes; SURFACE TO SURFACE has a fixed pairing and no geometric
+part, so after the last active-set change the augmented-Lagrangian updates only re-solve.
+"""
 
 
 SUMMARY_TEMPLATE = """\
@@ -418,34 +578,63 @@ SUMMARY_TEMPLATE = """\
   bore of the Lamé cylinder is the best of the four, because the averaging of
   constant-strain triangles happens to be more accurate at a boundary.
 - **Hertz contact:** VEM quads and FEM quads are indistinguishable; the paper's
-  389-element mesh already gives the peak pressure within 1 %. The computed peak then
-  converges to about 83.75, 0.18 % above Hertz's 83.60: **0.1 % against the Hertz
-  formula is not reachable with this model** (finite block, point load, circular
-  profile, penalty), whatever the mesh. FEM triangles need far more unknowns (their
-  peak pressure oscillates with the diagonal pattern).
+  389-element mesh already gives the peak pressure within 1 %. With the penalty the
+  computed peak converges to about 83.75, 0.18 % above Hertz's 83.60: **0.1 % against the
+  Hertz formula is not reachable with this model** (finite block, point load, circular
+  profile), whatever the mesh or formulation. FEM triangles need far more unknowns (their
+  peak pressure oscillates with the diagonal pattern). **HARD contact is not more
+  accurate here:** without the penalty's overclosure (about 8e-4, which lowers the peak)
+  the peak converges to about 83.95 (NTS HARD) and 84.07 (S2S HARD), 0.4-0.6 % above
+  83.60, so the error against the formula is 2-3 times that of the penalty at the finest
+  mesh; the half-width is the same within 0.1 %. S2S HARD is the least accurate of the
+  three on the paper's coarse meshes (peak 3.3 % off at 389 elements, 2.2 % at 600, against
+  0.8 % for the penalty), and it costs more: 8-15 iterations (the active set grows one or
+  two nodes per iteration from the first touching node) against 4-5 for the penalty; NTS
+  HARD 9-13 iterations, each with a factorization. The resultants agree (99.7 of the
+  applied 100 on the half model by the trapezoid rule, for all three), so these are
+  accuracy and cost differences, not wrong answers. Use the penalty (or HARD where no
+  overclosure is wanted) for curved contact; S2S gains nothing here and costs more.
 - **Non-matching interface:** the node-to-segment transfer on non-matching structured
   meshes leaves a pattern in the contact pressure that does not shrink with the mesh:
   slave nodes that sit over master nodes carry 9-10 % less pressure, the others about
   2 % more (the resultant converges: 4e-5 on the finest quads). Voronoi meshes show an irregular
-  pattern of the same size. So **neither 1 % nor 0.1 % in the nodal contact pressure is
-  reachable by refining**; the resultant, the mean pressure and the stresses away from
-  the interface are fine. Use matching meshes (or a mortar method, which vemcontact
-  does not have) where the local contact pressure matters.
+  pattern of the same size; NTS HARD has the same pattern (the transfer, not the
+  penalty, makes it). So **with node to surface neither 1 % nor 0.1 % in the nodal contact
+  pressure is reachable by refining**. **SURFACE TO SURFACE passes the patch test:** on
+  Voronoi and on quads, at every level, the contact pressure, the resultant and the
+  stresses are exact to round-off (3e-10 relative or below), with one numeric
+  factorization per run, for a few percent more unknowns (the inserted interface nodes)
+  and a run time equal to or below the penalty's. Use it for non-matching interfaces of
+  VEM bodies where the local contact pressure matters.
 
 ## Notes
 
 - The interface case with Voronoi meshes of 2 × 25 600 cells (about 2·10^5 unknowns,
-  K = 1e12, K h/E about 10) fails: the active-set iteration does not settle (the
-  penetration jumps from 7.7e-5 to 2.4e-3 at the second iteration, nodes keep opening
-  and closing) and stops after 50 iterations (exit status 4). It is recorded as a failed
-  run above; a known weakness of the contact iteration on this mesh (docs/status.md).
-  The coarser Voronoi meshes converge in 3-4 iterations.
-- Session 2 made the contact iteration a Newton iteration on the pairing
-  (docs/contact-robustness.md): 3-5 iterations where session 1 needed 5-7 at 3·10^4
-  unknowns. On the finest structured VEM quads (1.3·10^5 unknowns) the Newton steps
-  diverge and lose positive definiteness; the code then drops the geometric part for
-  the step and converges as a fixed point (about 40 iterations, column "iter."); FEM quads
-  and triangles of the same size converge in 10 and 5.
+  K = 1e12, K h/E about 10) still fails with node to surface, penalty and HARD alike:
+  the active-set iteration does not settle and stops after 50 iterations (exit status
+  4; a known weakness, docs/status.md). It is recorded as a failed run above. The coarser
+  Voronoi meshes converge in 3-4 (penalty) and 9-10 (HARD) iterations. SURFACE TO SURFACE
+  converges on the same mesh in 3 iterations with one factorization.
+  How they fail differs: the penalty run drops the geometric part once (one fallback)
+  and then cycles (relative residual 1.2e-4 at iteration 50); the NTS HARD run has no
+  fallback and cycles with a period of about 10 iterations between active sets of 236 to
+  298 of its nodes, with a maximum pressure of 1.2e11 where the answer is 6.7e7 (a wrong
+  state, not a slow convergence).
+- On the finest structured quads (1.3·10^5 unknowns) node to surface with finite sliding
+  drops the geometric part of the pairing once (the Newton steps diverge, "fallbacks"
+  in the robustness table) and then converges as a fixed point: the penalty in 44
+  iterations (VEM; FEM quads 10, without fallback), NTS HARD **not at all** within 50
+  iterations (VEM and FEM quads): after the fallback the augmented-Lagrangian updates
+  converge linearly, the penetration halving about every 2 iterations (1e-13 at
+  iteration 50, relative residual 1e-13, the pressures still changing by more than the
+  tolerance), exit status 4. SURFACE TO SURFACE converges on the same meshes in 3
+  iterations with one factorization.
+- With NTS HARD every iteration is a numeric factorization (finite sliding: the pairing
+  and the Newton part change each iteration), and the augmented-Lagrangian updates add
+  iterations: 6-13 per increment where the penalty needs 3-5, so NTS HARD costs 1.5-3
+  times the penalty's run time at the same mesh (tables above). With `SMALL SLIDING`
+  the pairing is fixed and the updates only re-solve (docs/performance.md, "Contact
+  formulations").
 - Small runs (< 0.05 s) are dominated by fixed costs and by the noise of the shared
   machine: their time ratios mean little. The runs of a study take turns on one core;
   other jobs on the machine add noise that the median of the repeats only partly removes.
