@@ -337,16 +337,17 @@ def test_hertz_hard(exe, tmp_path, pair_type, tol):
     docs/contact-formulation.md); the same answer to 1e-8 whatever the internal stiffness
     (measured 1e-11 for SURFACE TO SURFACE; NODE TO SURFACE re-pairs after every solve
     and ends 1e-9 apart); no overclosure beyond 1e-10 of the element size (0.05 near the
-    contact point); and at most one numeric factorization per change of the active set
-    (plus the first): the multiplier updates only solve again where the pairing is
-    fixed."""
+    contact point); and at most one numeric factorization per change of the active set,
+    plus the first and the one where the springs stiffen from the search of the active
+    set (K h/E = 10) to the augmentation (1e3 x scale): the multiplier updates only solve
+    again where the pairing is fixed."""
     peaks = []
     for scale in (0.1, 1.0, 100.0):
         cpress, copen, rec = hertz_hard(exe, tmp_path, pair_type, scale)
         peaks.append(cpress.max())
         assert -copen.min() <= 1e-10 * 0.05
         if pair_type == "SURFACE TO SURFACE":
-            assert rec["factorized"].sum() <= 1 + np.count_nonzero(rec["changed"][:-1] > 0)
+            assert rec["factorized"].sum() <= 2 + np.count_nonzero(rec["changed"][:-1] > 0)
             assert rec["factorized"][-1] == 0
     assert abs(peaks[1] / 83.60 - 1) <= tol
     assert max(peaks) / min(peaks) - 1 <= 1e-8

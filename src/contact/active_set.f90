@@ -66,6 +66,14 @@ module vemcontact_contact_active_set
    !> STIFFNESS SCALE FACTOR on *CONTACT CONTROLS; the converged answer does not
    !> depend on it.
    real(wp), parameter, public :: hard_stiffness = 1.0e3_wp
+   !> HARD contact searches its active set with springs this much softer than the
+   !> default augmentation stiffness, K h/E = 10 (never stiffer than the augmentation
+   !> itself, whatever the STIFFNESS SCALE FACTOR; the penalty of the paper's Hertz
+   !> decks, where the active set grows from a point in 4-5 iterations; at 1e3 the line
+   !> search lets it grow one or two nodes per iteration, 11-15 iterations).  The first
+   !> Uzawa update then starts the multipliers from the soft penalty's forces, and the
+   !> springs stiffen to hard_stiffness for the updates that remove the overclosure.
+   real(wp), parameter, public :: hard_search_ratio = 1.0e-2_wp
 
    !> One contact pair's geometry.
    type :: pair_data_t
@@ -90,6 +98,9 @@ module vemcontact_contact_active_set
       !> PRESSURE-OVERCLOSURE=HARD: slope is the internal augmentation stiffness, and
       !> the pressure is the converged multiplier (no overclosure)
       logical :: hard = .false.
+      !> HARD: k of the active-set search over the augmentation stiffness,
+      !> hard_search_ratio / STIFFNESS SCALE FACTOR, at most 1
+      real(wp) :: search_ratio = 1.0_wp
       integer(ip), allocatable :: nn_seg(:)
       real(wp), allocatable :: nn_xi(:), nn_normal(:, :)
    end type pair_data_t
@@ -102,6 +113,9 @@ module vemcontact_contact_active_set
       real(wp), allocatable :: length(:)       !< undeformed tributary length
       real(wp), allocatable :: thick(:)
       real(wp), allocatable :: k(:)            !< spring stiffness K * length * thick
+      !> HARD entries: the augmentation stiffness, which k reaches at the first Uzawa
+      !> update of a step (k starts at hard_search_ratio times it); LINEAR: k
+      real(wp), allocatable :: k_full(:)
       !> normal force of the augmented Lagrangian (HARD pairs; 0 for LINEAR): an entry
       !> pushes with N = max(0, lambda - k g), so that lambda is the contact force once
       !> the gap has closed to zero
@@ -138,6 +152,7 @@ module vemcontact_contact_active_set
       procedure :: newton
       procedure :: has_hard
       procedure :: augment
+      procedure :: start_state
       procedure :: normal_force
       procedure :: set_balanced
       procedure :: linear_forces
@@ -192,6 +207,7 @@ contains
          self%pairs(p)%stiffness = pair_stiffness(model, seg_elem, node)
          if (model%interactions(model%pairs(p)%interaction)%hard .and. size(node) > 0) then
             self%pairs(p)%hard = .true.
+            self%pairs(p)%search_ratio = min(1.0_wp, hard_search_ratio/model%controls%stiffness_scale)
             self%pairs(p)%slope = hard_stiffness*model%controls%stiffness_scale*self%pairs(p)%stiffness/ &
                                   (median_length(model, seg)*maxval(thick, mask=thick > 0.0_wp))
          end if
@@ -216,6 +232,7 @@ contains
       self%thick = all_thick
       do i = 1, self%n
          self%k(i) = self%pairs(self%pair(i))%slope*self%length(i)*self%thick(i)
+         self%k_full(i) = self%k(i)
       end do
       if (self%n == 0 .and. size(model%pairs) > 0) then
          call fatal_error(error, location_string(model, model%pairs(1)%loc)// &
@@ -350,6 +367,7 @@ contains
       allocate (self%geo_rhs(6, n), source=0.0_wp)
       allocate (self%active(n), source=.false.)
       allocate (self%lambda(n), source=0.0_wp)
+      allocate (self%k_full(n), source=0.0_wp)
       allocate (self%slid_off(n), source=.false.)
    end subroutine allocate_entries
 
@@ -727,9 +745,21 @@ contains
          end if
          self%lambda(i) = max(0.0_wp, self%lambda(i) - self%k(i)*self%gap(i))
          if (.not. self%active(i)) self%lambda(i) = 0.0_wp
+         self%k(i) = self%k_full(i)
       end do
       if (fmax > 0.0_wp) change = change/fmax
    end subroutine augment
+
+   !> Start a load state: the springs of HARD entries soften to K h/E = 10 (their
+   !> pair's search_ratio) for the search of the active set (augment stiffens
+   !> them again); the multipliers are kept from the previous state.
+   subroutine start_state(self)
+      class(contact_state_t), intent(inout) :: self
+      integer :: i
+      do i = 1, self%n
+         if (self%pairs(self%pair(i))%hard) self%k(i) = self%pairs(self%pair(i))%search_ratio*self%k_full(i)
+      end do
+   end subroutine start_state
 
    !> Gaps of every entry at displacements u with the current pairing frozen,
    !> g = g0 + n.A(xi) u (linear in u), for the line search of the driver; entries

@@ -150,6 +150,7 @@ contains
       rel_prev = huge(1.0_wp)
       nrise = 0
       call contact%set_geometric(.true.)
+      call contact%start_state()
       ! start from the state left by the previous step (or the undeformed one)
       t0 = wall_time()
       call contact%project(model, u, error)

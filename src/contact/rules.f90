@@ -60,7 +60,7 @@ module vemcontact_contact_rules
    type :: matrix_key_t
       logical, allocatable :: active(:)
       integer(ip), allocatable :: iseg(:)
-      real(wp), allocatable :: xi(:), normal(:, :), geo_weight(:)
+      real(wp), allocatable :: xi(:), normal(:, :), geo_weight(:), k(:)
    end type matrix_key_t
 
 contains
@@ -244,10 +244,11 @@ contains
       key%xi = contact%xi
       key%normal = contact%normal
       key%geo_weight = contact%geo_weight
+      key%k = contact%k
    end function key_of
 
    !> Whether the contact part of the matrix is that of `key`: the same active set
-   !> and, for the active entries, the same pairing and no geometric part (which also
+   !> and, for the active entries, the same pairing and springs and no geometric part (which also
    !> depends on the gaps, so that a Newton matrix is never reused).
    pure logical function same_key(key, contact) result(same)
       type(matrix_key_t), intent(in) :: key
@@ -262,6 +263,7 @@ contains
       do i = 1, contact%n
          if (.not. contact%active(i)) cycle
          same = key%iseg(i) == contact%iseg(i) .and. key%xi(i) == contact%xi(i) .and. &
+                key%k(i) == contact%k(i) .and. &
                 all(key%normal(:, i) == contact%normal(:, i)) .and. key%geo_weight(i) == 0.0_wp .and. &
                 contact%geo_weight(i) == 0.0_wp
          if (.not. same) return

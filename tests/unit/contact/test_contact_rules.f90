@@ -90,6 +90,7 @@ program test_contact_rules
    c%xi = [0.25_wp, 0.0_wp]
    c%normal = reshape([0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp], [2, 2])
    c%geo_weight = [0.0_wp, 0.0_wp]
+   c%k = [1.0_wp, 1.0_wp]
    call t%check(.not. same_key(key, c), 'no factor yet: no reuse')
    key = key_of(c)
    call t%check(same_key(key, c), 'the same contact matrix: reuse')
@@ -101,6 +102,9 @@ program test_contact_rules
    c%active(2) = .true.
    call t%check(.not. same_key(key, c), 'another active set: refactorize')
    c%active(2) = .false.
+   c%k(1) = 100.0_wp
+   call t%check(.not. same_key(key, c), 'a stiffer spring (HARD after its search): refactorize')
+   c%k(1) = 1.0_wp
    c%geo_weight(1) = 1.0_wp
    call t%check(.not. same_key(key, c), 'a geometric term (depends on the gaps): refactorize')
    call t%finish()
