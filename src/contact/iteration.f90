@@ -297,7 +297,10 @@ contains
       end do
       write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations did not converge in ', maxit, &
          ' iterations (relative residual ', rel, ')'
-      call fatal_error(error, trim(buf)//'; raise MAXIT on *CONTACT CONTROLS or check the penalty', err_solver)
+      call fatal_error(error, trim(buf)//'; raise MAXIT on *CONTACT CONTROLS or check the penalty'// &
+                       new_line('a')//'  = help: node-to-segment contact with finite sliding re-pairs the '// &
+                       'nodes at every iteration and can alternate where they face master vertices; '// &
+                       'TYPE=SURFACE TO SURFACE (VEM bodies) or SMALL SLIDING keep the pairing fixed', err_solver)
    contains
       subroutine timed_solve(rhs, x)
          real(wp), intent(in) :: rhs(:)
