@@ -2,16 +2,15 @@
 !> Exit status: 0 success, 1 bad input, 2 file error, 3 model not solvable,
 !> 4 solver failure, 5 internal error.
 program vemcontact_main
-   use vemcontact_kinds, only: wp, ip
+   use vemcontact_kinds, only: wp
    use vemcontact_error, only: error_t
-   use vemcontact_model, only: model_t, pair_surface_to_surface
+   use vemcontact_model, only: model_t
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    use vemcontact_app_process, only: exit_process, make_directory
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
-   use vemcontact_contact_insertion, only: insert_interface_nodes
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -20,9 +19,6 @@ program vemcontact_main
    type(model_t) :: model
    type(run_options_t) :: opts
    real(wp) :: t0, tstart
-   integer(ip), allocatable :: inserted(:)
-   integer :: k
-   character(len=160) :: buf
 
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
@@ -47,15 +43,6 @@ program vemcontact_main
    call read_deck(cli%deck, model, error)
    if (allocated(error)) call fail(error)
    call log%phase('read', wall_time() - t0)
-   ! TYPE=SURFACE TO SURFACE pairs: interface nodes inserted before anything is assembled
-   call insert_interface_nodes(model, inserted, error)
-   if (allocated(error)) call fail(error)
-   do k = 1, size(inserted)
-      if (model%pairs(k)%formulation /= pair_surface_to_surface) cycle
-      write (buf, '(2x,a,i0,a,i0,a,i0,a)') 'contact pair ', k, ' (SURFACE TO SURFACE): ', inserted(k), &
-         ' interface nodes inserted, ', size(model%pairs(k)%partner, 2), ' node pairs'
-      call log%say(trim(buf))
-   end do
 
    opts%out_dir = cli%out_dir
    opts%job = cli%job

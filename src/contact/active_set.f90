@@ -19,6 +19,7 @@ module vemcontact_contact_active_set
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
    use vemcontact_model, only: model_t, contact_pair_t, location_string, pair_surface_to_surface
    use vemcontact_contact_surfaces, only: master_segments, slave_nodes
+   use vemcontact_contact_insertion, only: insert_interface_nodes
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
                                         contact_graph_pairs
    use vemcontact_contact_geometry, only: relative_map, contact_stiffness, contact_geometric_stiffness, &
@@ -139,6 +140,7 @@ module vemcontact_contact_active_set
       !> end: it slid past the end of an open master surface (set by the driver)
       logical, allocatable :: slid_off(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
+      integer(ip), allocatable :: inserted(:)  !< nodes inserted for each pair (SURFACE TO SURFACE)
    contains
       procedure :: init
       procedure :: graph_pairs
@@ -164,10 +166,13 @@ module vemcontact_contact_active_set
 
 contains
 
-   !> Gather the pairs' slave nodes and master segments; nothing is active yet.
+   !> Prepare the model's contact pairs: insert the interface nodes of the SURFACE TO
+   !> SURFACE pairs into the model (vemcontact_contact_insertion: the model gains nodes
+   !> and its polygons vertices, so this comes before anything is assembled), then
+   !> gather every pair's slave nodes and master segments; nothing is active yet.
    subroutine init(self, model, error)
       class(contact_state_t), intent(out) :: self
-      type(model_t), intent(in) :: model
+      type(model_t), intent(inout) :: model
       type(error_t), allocatable, intent(out) :: error
       type(error_t), allocatable :: err
       integer(ip), allocatable :: seg(:, :), seg_elem(:), node(:)
@@ -179,10 +184,12 @@ contains
       integer, allocatable :: all_pair(:)
       real(wp), allocatable :: all_len(:), all_thick(:)
       if (.not. allocated(model%pairs)) then
-         allocate (self%pairs(0))
+         allocate (self%pairs(0), self%inserted(0))
          call allocate_entries(self, 0)
          return
       end if
+      call insert_interface_nodes(model, self%inserted, error)
+      if (allocated(error)) return
       allocate (self%pairs(size(model%pairs)))
       allocate (all_node(0), all_pair(0), all_len(0), all_thick(0))
       do p = 1, size(model%pairs)

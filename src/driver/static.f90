@@ -4,7 +4,8 @@
 module vemcontact_driver_static
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t
-   use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic
+   use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic, &
+                               pair_surface_to_surface
    use vemcontact_sparse_mmio, only: write_matrix_market
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_validate, only: element_warnings
@@ -33,8 +34,10 @@ module vemcontact_driver_static
 
 contains
 
+   !> Run every step.  The model gains the interface nodes of SURFACE TO SURFACE
+   !> contact pairs (contact_state_t%init) before anything is assembled.
    subroutine run_static(model, opts, log, error)
-      type(model_t), intent(in) :: model
+      type(model_t), intent(inout) :: model
       type(run_options_t), intent(in) :: opts
       type(logger_t), intent(in) :: log
       type(error_t), allocatable, intent(out) :: error
@@ -52,6 +55,14 @@ contains
       character(len=256) :: buf
       character(len=:), allocatable :: base, vtu_name, name
 
+      call contact%init(model, error)
+      if (allocated(error)) return
+      do ip_ = 1, size(contact%inserted)
+         if (model%pairs(ip_)%formulation /= pair_surface_to_surface) cycle
+         write (buf, '(2x,a,i0,a,i0,a,i0,a)') 'contact pair ', ip_, ' (SURFACE TO SURFACE): ', contact%inserted(ip_), &
+            ' interface nodes inserted, ', size(model%pairs(ip_)%partner, 2), ' node pairs'
+         call log%say(trim(buf))
+      end do
       write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'nodes ', model%nnode, ', elements ', model%nelem, &
          ', unknowns ', 2*model%nnode, ', steps ', size(model%steps)
       call log%say(trim(buf))
@@ -60,8 +71,6 @@ contains
          count(model%elem_type == etype_polygon)
       call log%say(trim(buf))
 
-      call contact%init(model, error)
-      if (allocated(error)) return
       if (contact%n > 0) then
          write (buf, '(2x,a,i0,a,i0,a)') 'contact: ', size(contact%pairs), ' pairs, ', contact%n, ' slave nodes'
          call log%say(trim(buf))
