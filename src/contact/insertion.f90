@@ -26,7 +26,7 @@ module vemcontact_contact_insertion
    implicit none
    private
 
-   public :: insert_interface_nodes, project_onto_sides
+   public :: insert_interface_nodes, project_onto_sides, side_curvature, on_face
 
    !> A projection within snap_rel of a side's length from one of its end nodes is
    !> that node: nodes that coincide in the mesh (matching faces of a joint) do so up
