@@ -698,8 +698,9 @@ contains
          if (.not. self%active(i)) cycle
          nodes = nodes_of(self, i)
          uses(nodes(1)) = uses(nodes(1)) + 1
-         if (self%xi(i) /= 1.0_wp) uses(nodes(2)) = uses(nodes(2)) + 1
-         if (self%xi(i) /= 0.0_wp) uses(nodes(3)) = uses(nodes(3)) + 1
+         ! a master node with weight exactly 0 (node to node: xi = 0 or 1) takes no force
+         if (abs(1.0_wp - self%xi(i)) > 0.0_wp) uses(nodes(2)) = uses(nodes(2)) + 1
+         if (abs(self%xi(i)) > 0.0_wp) uses(nodes(3)) = uses(nodes(3)) + 1
       end do
       if (.not. allocated(self%balanced)) allocate (self%balanced(self%n))
       do i = 1, self%n
@@ -707,8 +708,8 @@ contains
          if (.not. self%active(i)) cycle
          s = self%node(i)
          ! a fixed dof's residual holds its reaction: usable only across the normal
-         if (uses(s) /= 1 .or. (fixed(2*s - 1) .and. self%normal(1, i) /= 0.0_wp) .or. &
-             (fixed(2*s) .and. self%normal(2, i) /= 0.0_wp)) cycle
+         if (uses(s) /= 1 .or. (fixed(2*s - 1) .and. abs(self%normal(1, i)) > 0.0_wp) .or. &
+             (fixed(2*s) .and. abs(self%normal(2, i)) > 0.0_wp)) cycle
          self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))
       end do
    end subroutine set_balanced
@@ -745,7 +746,7 @@ contains
          if (.not. self%pairs(self%pair(i))%hard .or. self%iseg(i) == 0) cycle
          if (self%active(i)) then
             noise = noise_u
-            if (self%gap0(i) /= 0.0_wp) noise = noise + noise_x
+            if (abs(self%gap0(i)) > 0.0_wp) noise = noise + noise_x
             overclosure = max(overclosure, (-self%gap(i) - noise)/self%length(i))
             change = max(change, self%k(i)*max(abs(self%gap(i)) - noise, 0.0_wp))
             fmax = max(fmax, self%normal_force(i))

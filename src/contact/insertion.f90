@@ -250,7 +250,8 @@ contains
       t = xb - xa
       l = length2(t)
       xp = (1.0_wp - xi)*xa + xi*xb
-      if (kappa /= 0.0_wp) xp = xp + 0.5_wp*kappa*l*xi*(1.0_wp - xi)*[t(2), -t(1)]
+      ! kappa = 0 exactly on a straight face: the offset is exactly zero there
+      xp = xp + 0.5_wp*kappa*l*xi*(1.0_wp - xi)*[t(2), -t(1)]
    end function on_face
 
    !> Refuse sides of FEM elements: they cannot take extra nodes.  One message that
@@ -546,22 +547,11 @@ contains
       model%nnode = n0 + n
    end subroutine grow_nodes
 
-   !> Start (t = 0) or end (t = 1) node of side k of element e.
-   pure integer(ip) function side_node(model, e, k, t) result(node)
-      type(model_t), intent(in) :: model
-      integer(ip), intent(in) :: e
-      integer, intent(in) :: k, t
-      integer(ip) :: p0, n
-      p0 = model%elem_ptr(e)
-      n = model%elem_ptr(e + 1) - p0
-      node = model%elem_conn(p0 + mod(k - 1 + t, int(n)))
-   end function side_node
-
    !> Order of the insertions by element, side and xi (a stable merge sort).
    pure function sorted_order(ins) result(order)
       type(insertion_t), intent(in) :: ins(:)
       integer(ip), allocatable :: order(:)
-      integer(ip) :: i, j, t
+      integer(ip) :: i
       order = [(i, i=1, size(ins))]
       call merge_sort(order)
    contains

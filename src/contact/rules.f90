@@ -262,11 +262,17 @@ contains
       if (.not. same) return
       do i = 1, contact%n
          if (.not. contact%active(i)) cycle
-         same = key%iseg(i) == contact%iseg(i) .and. key%xi(i) == contact%xi(i) .and. &
-                key%k(i) == contact%k(i) .and. &
-                all(key%normal(:, i) == contact%normal(:, i)) .and. key%geo_weight(i) == 0.0_wp .and. &
-                contact%geo_weight(i) == 0.0_wp
+         ! bitwise the same numbers: the matrix assembled from them is the same
+         same = key%iseg(i) == contact%iseg(i) .and. identical(key%xi(i), contact%xi(i)) .and. &
+                identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i))) .and. &
+                .not. (abs(key%geo_weight(i)) > 0.0_wp .or. abs(contact%geo_weight(i)) > 0.0_wp)
          if (.not. same) return
       end do
    end function same_key
+
+   !> a and b are the same number (neither is less or greater).
+   elemental logical function identical(a, b)
+      real(wp), intent(in) :: a, b
+      identical = .not. (a < b .or. a > b)
+   end function identical
 end module vemcontact_contact_rules

@@ -354,33 +354,33 @@ contains
    pure integer(ip) function previous_in_element(model, e, p) result(q)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: e, p
-      integer(ip) :: p0, n, k
-      p0 = model%elem_ptr(e)
-      n = model%elem_ptr(e + 1) - p0
-      q = 0
-      do k = 0, n - 1
-         if (model%elem_conn(p0 + k) == p) then
-            q = model%elem_conn(p0 + mod(k + n - 1, n))
-            return
-         end if
-      end do
+      q = neighbour_in_element(model, e, p, -1)
    end function previous_in_element
 
    !> The node after p in element e (counter-clockwise).
    pure integer(ip) function next_in_element(model, e, p) result(q)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: e, p
+      q = neighbour_in_element(model, e, p, 1)
+   end function next_in_element
+
+   !> The node `shift` places after p in element e (counter-clockwise), 0 if p is
+   !> not a node of e.
+   pure integer(ip) function neighbour_in_element(model, e, p, shift) result(q)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: e, p
+      integer, intent(in) :: shift
       integer(ip) :: p0, n, k
       p0 = model%elem_ptr(e)
       n = model%elem_ptr(e + 1) - p0
       q = 0
       do k = 0, n - 1
          if (model%elem_conn(p0 + k) == p) then
-            q = model%elem_conn(p0 + mod(k + 1, n))
+            q = model%elem_conn(p0 + modulo(k + shift, n))
             return
          end if
       end do
-   end function next_in_element
+   end function neighbour_in_element
 
    !> An element other than e with a side joining p and q, 0 if there is none.
    pure integer(ip) function other_element(model, node_ptr, node_elem, e, p, q) result(f)

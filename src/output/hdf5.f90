@@ -212,21 +212,9 @@ contains
       integer(hid_t) :: grp
       integer(ip), allocatable :: st(:)
       integer :: hdferr
-      logical :: exists
       if (.not. check_open(self, 'write_contact', error)) return
-      if (istep <= 9999) then
-         write (buf, '(i4.4)') istep
-      else
-         write (buf, '(i0)') istep
-      end if
-      gname = '/steps/'//trim(buf)//'/contact'
-      call h5lexists_f(self%file, gname, exists, hdferr)
-      if (failed(self, hdferr, 'looking up '//gname, error)) return
-      if (.not. exists) then
-         call h5gcreate_f(self%file, gname, grp, hdferr)
-         if (failed(self, hdferr, 'creating group '//gname, error)) return
-         call h5gclose_f(grp, hdferr)
-      end if
+      call contact_group(self, istep, gname, error)
+      if (allocated(error)) return
       write (buf, '(i0)') ipair
       gname = gname//'/pair_'//trim(buf)
       call h5gcreate_f(self%file, gname, grp, hdferr)
@@ -258,25 +246,12 @@ contains
       real(wp), intent(in) :: residual(:), penetration(:), pressure(:), step(:), time(:)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: gname
-      character(len=24) :: buf
       integer(hid_t) :: grp
       integer(hsize_t) :: dims(1)
       integer :: hdferr
-      logical :: exists
       if (.not. check_open(self, 'write_iterations', error)) return
-      if (istep <= 9999) then
-         write (buf, '(i4.4)') istep
-      else
-         write (buf, '(i0)') istep
-      end if
-      gname = '/steps/'//trim(buf)//'/contact'
-      call h5lexists_f(self%file, gname, exists, hdferr)
-      if (failed(self, hdferr, 'looking up '//gname, error)) return
-      if (.not. exists) then
-         call h5gcreate_f(self%file, gname, grp, hdferr)
-         if (failed(self, hdferr, 'creating group '//gname, error)) return
-         call h5gclose_f(grp, hdferr)
-      end if
+      call contact_group(self, istep, gname, error)
+      if (allocated(error)) return
       gname = gname//'/iterations'
       call h5gcreate_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'creating group '//gname, error)) return
@@ -296,6 +271,32 @@ contains
       call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
       if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_iterations
+
+   !> The name of /steps/NNNN/contact, created when it does not exist yet.
+   subroutine contact_group(self, istep, gname, error)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep
+      character(len=:), allocatable, intent(out) :: gname
+      type(error_t), allocatable, intent(out) :: error
+      character(len=24) :: buf
+      integer(hid_t) :: grp
+      integer :: hdferr
+      logical :: exists
+      if (istep <= 9999) then
+         write (buf, '(i4.4)') istep
+      else
+         write (buf, '(i0)') istep
+      end if
+      gname = '/steps/'//trim(buf)//'/contact'
+      call h5lexists_f(self%file, gname, exists, hdferr)
+      if (failed(self, hdferr, 'looking up '//gname, error)) return
+      if (.not. exists) then
+         call h5gcreate_f(self%file, gname, grp, hdferr)
+         if (failed(self, hdferr, 'creating group '//gname, error)) return
+         call h5gclose_f(grp, hdferr)
+         if (failed(self, hdferr, 'closing group '//gname, error)) return
+      end if
+   end subroutine contact_group
 
    !> Close the file (nothing if not open).  Without `error`, a failure to close is
    !> ignored: use the argument where the file's completeness matters.

@@ -47,7 +47,7 @@ program test_deck_contact_errors
    if (allocated(err)) print '(a)', err%message
    if (.not. allocated(err)) then
       call t%check(m%interactions(1)%hard .and. m%pairs(1)%formulation == pair_surface_to_surface .and. &
-                   m%controls%stiffness_scale == 10.0_wp, 'HARD, SURFACE TO SURFACE and the scale are read')
+                   abs(m%controls%stiffness_scale - 10.0_wp) <= 0.0_wp, 'HARD, SURFACE TO SURFACE and the scale are read')
    end if
 
    ! *SURFACE
