@@ -62,6 +62,12 @@ contains
          write (buf, '(2x,a,i0,a,i0,a,i0,a)') 'contact pair ', ip_, ' (SURFACE TO SURFACE): ', contact%inserted(ip_), &
             ' interface nodes inserted, ', size(model%pairs(ip_)%partner, 2), ' node pairs'
          call log%say(trim(buf))
+         if (contact%pairs(ip_)%nslave > size(model%pairs(ip_)%partner, 2)) then
+            write (buf, '(2x,a,i0,a)') 'note: ', contact%pairs(ip_)%nslave - size(model%pairs(ip_)%partner, 2), &
+               ' slave nodes face no master side (beyond its ends or farther than two sides): they '// &
+               'carry no contact'
+            call log%say(trim(buf))
+         end if
       end do
       write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'nodes ', model%nnode, ', elements ', model%nelem, &
          ', unknowns ', 2*model%nnode, ', steps ', size(model%steps)
