@@ -248,12 +248,15 @@ def test_pressures_add_up_to_the_transmitted_force(exe, tmp_path, pair, behavior
         g = f["steps/0001/contact/pair_1"]
         x = np.array(g["coordinates"])[:, 0]
         cpress = np.array(g["CPRESS"])
+        cnarea = np.array(g["CNAREA"])
     order = np.argsort(x)
     xs = x[order]
     trib = np.zeros_like(xs)
     trib[1:] += 0.5 * np.diff(xs)
     trib[:-1] += 0.5 * np.diff(xs)
     assert xs[0] == 0.0 and xs[-1] == 1.0
+    # the written contact areas are these tributary lengths (thickness 1)
+    assert np.allclose(cnarea[order], trib, rtol=1e-14, atol=0.0)
     total = float(np.sum(cpress[order] * trib))
     finite_sliding = pair == "TYPE=NODE TO SURFACE"
     assert abs(total / p - 1.0) <= (1e-6 if finite_sliding else 1e-8)

@@ -842,6 +842,7 @@ contains
       tab%x = model%x(:, self%node)
       tab%pair = self%pair
       allocate (tab%copen(self%n), tab%cpress(self%n), tab%cslip(self%n), tab%status(self%n))
+      tab%cnarea = self%length*self%thick
       do i = 1, self%n
          tab%status(i) = merge(1, 0, self%active(i))
          if (self%slid_off(i)) tab%status(i) = 2

@@ -15,6 +15,9 @@ module vemcontact_contact_table
       real(wp), allocatable :: copen(:)
       real(wp), allocatable :: cpress(:)
       real(wp), allocatable :: cslip(:)
+      !> CNAREA (Abaqus' name): the slave node's undeformed tributary length times the
+      !> thickness, the area CPRESS acts on (sum CPRESS * CNAREA = transmitted force)
+      real(wp), allocatable :: cnarea(:)
       integer, allocatable :: status(:)       !< 1 closed, 0 open, 2 slid past the end of the master
       integer, allocatable :: pair(:)
       integer(ip), allocatable :: node(:)     !< internal node index (for the driver)

@@ -181,7 +181,8 @@ contains
                call h5%write_contact(istep, ip_, pack(tab%node_id, tab%pair == ip_), &
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
-                                     pack(tab%cslip, tab%pair == ip_), pack(tab%status, tab%pair == ip_), error)
+                                     pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
+                                     pack(tab%status, tab%pair == ip_), error)
                if (allocated(error)) return
             end do
             associate (rec => sys%records)

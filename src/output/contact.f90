@@ -1,11 +1,11 @@
 !> Contact results of one pair in one step: a CSV table and a VTU point set of
 !> the slave nodes (vertex cells), so that ParaView shows them beside the mesh.
-!> Columns/fields: node id, coordinates (undeformed), COPEN (normal gap, positive
-!> open, negative = penetration), CPRESS (contact pressure, positive in
-!> compression: penalty force / (tributary length * thickness)), CSLIP (slip:
-!> tangential displacement of the slave node relative to its master point, along
-!> the master segment's direction a -> b; 0 without a master segment), STATUS
-!> (1 closed, 0 open), PAIR (pair number).
+!> Columns/fields (docs/output-format.md): node id, coordinates (undeformed), COPEN
+!> (normal gap, positive open, negative = overclosure), CPRESS (contact pressure,
+!> positive in compression: the normal force the solution balances / CNAREA), CSLIP
+!> (tangential displacement of the slave node relative to its master point, along the
+!> master segment's direction a -> b; 0 without a master segment), CNAREA (tributary
+!> length * thickness), STATUS (1 closed, 0 open, 2 slid off the master's end), PAIR.
 module vemcontact_output_contact
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io
@@ -33,12 +33,12 @@ contains
          call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
          return
       end if
-      write (unit, '(a)', iostat=ios) 'node,x,y,COPEN,CPRESS,CSLIP,STATUS'
+      write (unit, '(a)', iostat=ios) 'node,x,y,COPEN,CPRESS,CSLIP,CNAREA,STATUS'
       do k = 1, size(tab%node_id)
          if (tab%pair(k) /= ipair) cycle
          if (ios /= 0) exit
-         write (unit, '(i0,5(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
-            tab%copen(k), tab%cpress(k), tab%cslip(k), status_name(tab%status(k))
+         write (unit, '(i0,6(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
+            tab%copen(k), tab%cpress(k), tab%cslip(k), tab%cnarea(k), status_name(tab%status(k))
       end do
       close (unit)
       if (ios /= 0) then
@@ -62,7 +62,7 @@ contains
       end select
    end function status_name
 
-   !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, CSLIP, STATUS, PAIR, NODE_ID.
+   !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, CSLIP, CNAREA, STATUS, PAIR, NODE_ID.
    subroutine write_contact_vtu(path, tab, error)
       character(len=*), intent(in) :: path
       type(contact_table_t), intent(in) :: tab
@@ -89,6 +89,7 @@ contains
       call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios)
       call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios)
       call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios)
+      call put_array(unit, 'type="Float64" Name="CNAREA"', as_bytes(tab%cnarea), ios)
       ibuf = int(tab%status, ip)
       call put_array(unit, 'type="'//itype//'" Name="STATUS"', as_bytes(ibuf), ios)
       ibuf = int(tab%pair, ip)

@@ -200,11 +200,11 @@ contains
 
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
    !> undeformed coordinates, COPEN, CPRESS, CSLIP and STATUS (1 closed, 0 open); then flush.
-   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, status, error)
+   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
-      real(wp), intent(in) :: x(:, :), copen(:), cpress(:), cslip(:)
+      real(wp), intent(in) :: x(:, :), copen(:), cpress(:), cslip(:), cnarea(:)
       integer, intent(in) :: status(:)
       type(error_t), allocatable, intent(out) :: error
       character(len=:), allocatable :: gname
@@ -225,6 +225,7 @@ contains
       if (.not. allocated(error)) call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
       if (.not. allocated(error)) call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
       if (.not. allocated(error)) call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'CNAREA', shape(cnarea, hsize_t), cnarea, error)
       if (.not. allocated(error)) call put_int(self, grp, 'STATUS', shape(st, hsize_t), st, error)
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
