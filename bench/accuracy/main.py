@@ -36,7 +36,8 @@ _INSERTED = re.compile(r"\(SURFACE TO SURFACE\): (\d+) interface nodes inserted"
 
 
 def contact_stats(log):
-    """The contact iterations of a log: largest count per step (increment), numeric
+    """The contact iterations of a log (replaced by the HDF5 records of a run that
+    finished, contact_stats_h5): largest count per step (increment), numeric
     factorizations (sum over the steps), fallbacks to the frozen pairing (lines
     '(geometric contact stiffness off for this step: ...)'), iterations made before a
     failure, interface nodes inserted by SURFACE TO SURFACE."""
@@ -47,6 +48,28 @@ def contact_stats(log):
                 factorizations=sum(b for _, b in its) if its else float("nan"),
                 fallbacks=log.count(_FALLBACK),
                 inserted_nodes=sum(int(k) for k in _INSERTED.findall(log)))
+
+
+def contact_stats_h5(h5path, stats):
+    """The same counts from the HDF5 iteration records (/steps/NNNN/contact/iterations:
+    one entry per contact iteration, 'factorized' 1 where it paid a numeric
+    factorization); the log's counts stay where the file has no records."""
+    import h5py
+    try:
+        with h5py.File(h5path, "r") as f:
+            per_step = []
+            for name in sorted(f.get("steps", {})):
+                g = f["steps"][name]
+                if "contact/iterations" in g:
+                    it = g["contact/iterations"]
+                    per_step.append((len(it["iteration"][...]), int(it["factorized"][...].sum())))
+    except OSError:
+        return stats
+    if per_step and sum(n for n, _ in per_step):
+        stats = dict(stats, contact_iterations=max(n for n, _ in per_step),
+                     iterations_total=sum(n for n, _ in per_step),
+                     factorizations=sum(k for _, k in per_step))
+    return stats
 
 
 def run_once(deck, outdir):
@@ -65,7 +88,8 @@ def run_once(deck, outdir):
         raise e
     total = float(_TOTAL.findall(log)[-1])
     unk = int(_UNK.search(log).group(1))
-    return wall, total, unk, contact_stats(log), os.path.join(outdir, job + ".h5")
+    h5 = os.path.join(outdir, job + ".h5")
+    return wall, total, unk, contact_stats_h5(h5, contact_stats(log)), h5
 
 
 def snapshot_exe(work):
@@ -195,7 +219,7 @@ def main(argv=None):
             tl = [t for t in previous[1] if t["case"] == cname]
             timings += tl
             elapsed[cname] = sum(float(t["wall_s"]) for t in tl)
-            sources[cname] = previous[2]
+            sources[cname] = previous[2].get(cname, previous[2]["default"])
     total_elapsed = sum(elapsed.values())
     mach_load = (f"{mach}; load average {load0:.2f} at the start of the last run, {os.getloadavg()[0]:.2f} at "
                  f"its end; vemcontact {source_state()}")
@@ -226,8 +250,9 @@ def main(argv=None):
 
 
 def previous_results():
-    """Rows and timings of bench/results/accuracy*.csv and the run they came from (the
-    **Machine:** line of the current document), for the cases not run in this work folder."""
+    """Rows and timings of bench/results/accuracy*.csv and the run each case came from (the
+    **Machine:** line of the current document: its 'Cases by run', else the last run), for
+    the cases not run in this work folder."""
     path = os.path.join(ROOT, "bench", "results", "accuracy.csv")
     if not os.path.exists(path):
         return None
@@ -242,6 +267,17 @@ def previous_results():
                       open(doc).read())
         if m:
             src = f"an earlier run, vemcontact {m.group(3)}, load average {m.group(1)} at its start, {m.group(2)} at its end"
+        # the run of each case as the document names it ('Cases by run: a, b: source; c: ...'):
+        # rows kept from an earlier run keep the commit and load of the run that made them
+        m = re.search(r"Cases by run: (.*?at its end)\. ", open(doc).read())
+        if m:
+            per_case = {}
+            for g in re.finditer(r"((?:[a-z]+, )*[a-z]+): (.+?at its end)(?:; |$)", m.group(1)):
+                for c in g.group(1).split(", "):
+                    per_case[c] = g.group(2) if g.group(2).startswith("an earlier run") else "an earlier run, " + g.group(2)
+            src = dict(per_case, default=src)
+    if isinstance(src, str):
+        src = dict(default=src)
     return rows, timings, src
 
 

@@ -330,7 +330,8 @@ run: the mesher meshes the half-disc only with structured quads/triangles.
 **Contact formulations.** *NTS penalty* is the paper's deck: `TYPE=NODE TO SURFACE`
 (node to segment, finite sliding), `PRESSURE-OVERCLOSURE=LINEAR` with K = 1e5.
 *NTS HARD* is the same pair with `PRESSURE-OVERCLOSURE=HARD` (augmented Lagrangian, no
-overclosure; internal stiffness K h/E = 1e3). *S2S HARD* is `TYPE=SURFACE TO SURFACE`
+overclosure; the active set is searched with soft springs, K h/E = 10, which stiffen to
+K h/E = 1e3 at the first multiplier update). *S2S HARD* is `TYPE=SURFACE TO SURFACE`
 (each side's interface nodes inserted into the other side's VEM polygons, node-to-node
 contact with the pairing fixed at the start) with HARD; VEM only (FEM bodies are refused),
 so the inserted nodes add a few unknowns (the unknowns column counts them). CPRESS is the
@@ -511,11 +512,20 @@ three finest levels is extrapolated and marked as such.
     if any(r["case"] in CONTACT_CASES for r in rows):
         tab, verdicts = robustness(rows)
         parts.append(ROBUSTNESS_TEXT.format(maxit=MAX_ITERATIONS, table=tab,
-                                            met=sum(v for *_, v in verdicts), n=len(verdicts)))
+                                            met=sum(v for *_, v in verdicts), n=len(verdicts),
+                                            hard_its=_range([r for r in rows if r["case"] == "interface"
+                                                             and _split(r["family"])[1] == "nts-hard"
+                                                             and str(r.get("status", "ok")) == "ok"],
+                                                            "contact_iterations")))
     parts.append(SUMMARY_TEMPLATE)
     with open(doc, "w") as f:
         f.write("\n".join(parts))
     print(f"wrote {doc} and {len(case_names)} figures in {figdir}")
+
+
+def _range(rs, key):
+    v = [int(r[key]) for r in rs if math.isfinite(r.get(key, float("nan")))]
+    return f"{min(v)}-{max(v)}" if v else "-"
 
 
 ROBUSTNESS_TEXT = """\
@@ -524,12 +534,16 @@ ROBUSTNESS_TEXT = """\
 Target (the contact formulations issue): every contact case, including the finest
 non-matching interfaces, converges in at most {maxit} iterations per increment without a
 fallback, and no numeric factorization happens when the matrix has not changed. Measured
-from each run's log (`bench/accuracy/main.py`, `contact_stats`; every deck here has one
-step, one increment): *iterations per increment* is the largest 'contact converged in N
-iterations' of the run, *numeric factorizations* the F of '(F numeric factorizations)',
-*re-solves only* the iterations that reused the factor (N - F), *fallbacks* the lines
+from each run's iteration records in the HDF5 file (`/steps/NNNN/contact/iterations`;
+`bench/accuracy/main.py`, `contact_stats_h5`; every deck here has one step, one
+increment): *iterations per increment* is the number of records of the step,
+*numeric factorizations* the records with `factorized` = 1, *re-solves only* the
+iterations that reused the factor (N - F); from the log, *fallbacks*: the lines
 '(geometric contact stiffness off for this step: ...)' (the frozen-pairing fallback of
-node-to-segment with finite sliding). The three finest levels of each family and
+node-to-segment with finite sliding; HARD's switch-off of the geometric part at its
+first multiplier update is not logged and not counted). The result file of a failed run
+has no step and no records: its iterations are the largest iteration number of the log's
+iteration table. The three finest levels of each family and
 formulation, separated by ' / '; a run that failed stops its family. The verdict is over
 all levels of the family.
 
@@ -537,11 +551,22 @@ all levels of the family.
 
 {met} of {n} family/formulation combinations meet the target on every level. The code
 refactorizes only when the active set, the pairing (segment, xi, normal) or the
-geometric (Newton) part changed (`same_key` in `src/driver/linear.f90`): with node to
-surface and finite sliding the pairing follows the deformation and the Newton part is on
-once the active set has settled, so every iteration factorizes (N = F) although the
-active set no longer changes; SURFACE TO SURFACE has a fixed pairing and no geometric
-part, so after the last active-set change the augmented-Lagrangian updates only re-solve.
+geometric (Newton) part changed, or HARD's springs stiffened (`same_key` in
+`src/contact/rules.f90`): with node to surface and finite sliding the pairing follows the
+deformation, so every iteration factorizes (N = F) although the active set no longer
+changes, HARD included (its geometric part is off from the first multiplier update on, but
+the projections still move). SURFACE TO SURFACE has a fixed pairing and no geometric part:
+HARD searches the active set on soft springs (K h/E = 10; one factorization per active
+set), factorizes once more when they stiffen at the first multiplier update (K h/E = 1e3),
+and then only re-solves (interface: 4 iterations, 2 factorizations at every level).
+
+Where the target is missed: the interface case with node to surface. *NTS HARD* needs
+{hard_its} iterations where the penalty needs 3-4 on the same meshes (10 on the finest FEM quads,
+where NTS HARD needs 37): after the soft search (3
+Newton iterations on the coarsest Voronoi mesh) the springs stiffen, and with the Newton
+part off the finite-sliding pairing converges as a fixed point (the residual falls by a
+factor 2-30 per iteration) between multiplier updates that each wait for it; every iteration
+refactorizes. On the finest meshes the iteration does not settle (the Notes below).
 """
 
 
@@ -588,9 +613,12 @@ SUMMARY_TEMPLATE = """\
   83.60, so the error against the formula is 2-3 times that of the penalty at the finest
   mesh; the half-width is the same within 0.1 %. S2S HARD is the least accurate of the
   three on the paper's coarse meshes (peak 3.3 % off at 389 elements, 2.2 % at 600, against
-  0.8 % for the penalty), and it costs more: 8-15 iterations (the active set grows one or
-  two nodes per iteration from the first touching node) against 4-5 for the penalty; NTS
-  HARD 9-13 iterations, each with a factorization. The resultants agree (99.7 of the
+  0.8 % for the penalty), and it costs more iterations: 7-10 (4-8 factorizations; the
+  active set is searched on soft springs, then the stiffened springs' multiplier updates
+  only re-solve) against 4-5 for the penalty; NTS HARD 8-10 iterations, each with a
+  factorization, 0.8-2.3 times the penalty's run time at 5e3 unknowns and above (4.1 in
+  one noisy level). All three meet the robustness target on every Hertz mesh. The
+  resultants agree (99.7 of the
   applied 100 on the half model by the trapezoid rule, for all three), so these are
   accuracy and cost differences, not wrong answers. Use the penalty (or HARD where no
   overclosure is wanted) for curved contact; S2S gains nothing here and costs more.
@@ -602,38 +630,45 @@ SUMMARY_TEMPLATE = """\
   penalty, makes it). So **with node to surface neither 1 % nor 0.1 % in the nodal contact
   pressure is reachable by refining**. **SURFACE TO SURFACE passes the patch test:** on
   Voronoi and on quads, at every level, the contact pressure, the resultant and the
-  stresses are exact to round-off (3e-10 relative or below), with one numeric
-  factorization per run, for a few percent more unknowns (the inserted interface nodes)
-  and a run time equal to or below the penalty's. Use it for non-matching interfaces of
+  stresses are exact to round-off (1e-12 relative or below), in 4 iterations with 2
+  numeric factorizations per run (the soft search, then the stiffened springs), for a
+  few percent more unknowns (the inserted interface nodes) and a run time of 0.7-1.6
+  times the penalty's where the penalty converges in 3-4 iterations (noisy at a load of
+  2-5), a twelfth of it on the finest quads (3.5 s against 42 s), and it is the only
+  formulation that converges on the finest Voronoi mesh. Use it for non-matching interfaces of
   VEM bodies where the local contact pressure matters.
 
 ## Notes
 
 - The interface case with Voronoi meshes of 2 × 25 600 cells (about 2·10^5 unknowns,
   K = 1e12, K h/E about 10) still fails with node to surface, penalty and HARD alike:
-  the active-set iteration does not settle and stops after 50 iterations (exit status
-  4; a known weakness, docs/status.md). It is recorded as a failed run above. The coarser
-  Voronoi meshes converge in 3-4 (penalty) and 9-10 (HARD) iterations. SURFACE TO SURFACE
-  converges on the same mesh in 3 iterations with one factorization.
-  How they fail differs: the penalty run drops the geometric part once (one fallback)
-  and then cycles (relative residual 1.2e-4 at iteration 50); the NTS HARD run has no
-  fallback and cycles with a period of about 10 iterations between active sets of 236 to
-  298 of its nodes, with a maximum pressure of 1.2e11 where the answer is 6.7e7 (a wrong
-  state, not a slow convergence).
+  the iteration does not settle and stops after 50 iterations (exit status 4; a known
+  weakness, docs/status.md). It is recorded as a failed run above. The coarser Voronoi
+  meshes converge in 3-4 (penalty) and 13-22 (HARD) iterations. SURFACE TO SURFACE
+  converges on the same mesh in 4 iterations with 2 factorizations. Both node-to-surface
+  runs drop the geometric part once (one fallback each: the matrix with it is not
+  positive definite) and then wander without converging, the relative residual between
+  2e-5 and 1.6e-4 after iteration 15 (1.2e-4 and 8.9e-5 at iteration 50) and a largest
+  pressure of 3e8 to 2e9 where the answer is 6.7e7 (a wrong state, not a slow
+  convergence). The NTS HARD run never gets past its soft search (the residual never
+  reaches the tolerance, so no multiplier update happens; 295-298 closed nodes).
 - On the finest structured quads (1.3·10^5 unknowns) node to surface with finite sliding
-  drops the geometric part of the pairing once (the Newton steps diverge, "fallbacks"
-  in the robustness table) and then converges as a fixed point: the penalty in 44
-  iterations (VEM; FEM quads 10, without fallback), NTS HARD **not at all** within 50
-  iterations (VEM and FEM quads): after the fallback the augmented-Lagrangian updates
-  converge linearly, the penetration halving about every 2 iterations (1e-13 at
-  iteration 50, relative residual 1e-13, the pressures still changing by more than the
-  tolerance), exit status 4. SURFACE TO SURFACE converges on the same meshes in 3
-  iterations with one factorization.
+  converges as a fixed point: the penalty in 43 iterations on VEM quads (after one
+  fallback: the Newton steps diverge) and in 10 on FEM quads (no fallback). NTS HARD on
+  VEM quads **fails**: one fallback at iteration 4, the frozen-pairing fixed point on the
+  soft springs reaches the residual tolerance only at iteration 45, the first multiplier
+  update follows, and the iteration limit comes at iteration 50 with the penetration at
+  1e-10 and a relative residual of 1e-11, the pressures still changing by more than the
+  tolerance (exit status 4). On FEM quads NTS HARD converges, in 37 iterations (no
+  fallback; 4.5 times the penalty's run time). SURFACE TO SURFACE converges on the same
+  meshes in 4 iterations with 2 factorizations.
 - With NTS HARD every iteration is a numeric factorization (finite sliding: the pairing
-  and the Newton part change each iteration), and the augmented-Lagrangian updates add
-  iterations: 6-13 per increment where the penalty needs 3-5, so NTS HARD costs 1.5-3
-  times the penalty's run time at the same mesh (tables above). With `SMALL SLIDING`
-  the pairing is fixed and the updates only re-solve (docs/performance.md, "Contact
+  changes each iteration), and the soft search and the multiplier updates add
+  iterations: 8-10 per increment on Hertz and 13-37 on the interface where the penalty
+  needs 3-5 (43 on the finest VEM quads), so NTS HARD costs 0.6-2.3 times the
+  penalty's run time on Hertz (4.1 once) and 0.8-6.5 times on the interface at the same mesh
+  (tables above; single levels are noisy at a load of 2-5). With `SMALL SLIDING` the
+  pairing is fixed and the updates only re-solve (docs/performance.md, "Contact
   formulations").
 - Small runs (< 0.05 s) are dominated by fixed costs and by the noise of the shared
   machine: their time ratios mean little. The runs of a study take turns on one core;
