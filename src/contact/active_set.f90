@@ -21,7 +21,7 @@ module vemcontact_contact_active_set
    use vemcontact_contact_surfaces, only: master_segments, slave_nodes
    use vemcontact_contact_insertion, only: insert_interface_nodes
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
-                                        contact_graph_pairs
+                                        contact_graph_pairs, median
    use vemcontact_contact_geometry, only: relative_map, contact_stiffness, contact_geometric_stiffness, &
                                           project_point_segment, seg_ok, length2, contact_slip
    use vemcontact_sparse_matrix, only: sym_csc_t
@@ -253,24 +253,12 @@ contains
       integer(ip), intent(in) :: seg(:, :)
       real(wp) :: h
       real(wp), allocatable :: l(:)
-      integer :: k, j
-      real(wp) :: t
+      integer :: k
       allocate (l(size(seg, 2)))
       do k = 1, size(seg, 2)
          l(k) = length2(model%x(:, seg(2, k)) - model%x(:, seg(1, k)))
       end do
-      ! insertion sort: set-up work, once per pair
-      do k = 2, size(l)
-         t = l(k)
-         j = k - 1
-         do while (j >= 1)
-            if (l(j) <= t) exit
-            l(j + 1) = l(j)
-            j = j - 1
-         end do
-         l(j + 1) = t
-      end do
-      h = l((size(l) + 1)/2)
+      h = median(l)
    end function median_length
 
    !> The fixed node-to-node pairing of a SURFACE TO SURFACE pair: each slave node's

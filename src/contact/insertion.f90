@@ -84,7 +84,7 @@ contains
       integer, intent(in) :: p
       integer(ip), intent(out) :: nadded
       type(error_t), allocatable, intent(out) :: error
-      integer(ip), allocatable :: mseg(:, :), melem(:), sseg(:, :), selem(:), snode(:), mnode(:)
+      integer(ip), allocatable :: mseg(:, :), melem(:), sseg(:, :), selem(:), snode(:), mnode(:), sall(:)
       integer(ip), allocatable :: s_on(:), m_on(:), s_partner(:), m_partner(:), pairs(:, :)
       integer, allocatable :: mside(:), sside(:)
       real(wp), allocatable :: s_xi(:), m_xi(:)
@@ -101,17 +101,11 @@ contains
       call check_virtual(model, [melem, selem], error)
       if (allocated(error)) return
       ! the interface nodes of each side; a node of both (a joint tip) is no one's partner
-      snode = unique_nodes(sseg, model%nnode)
+      sall = unique_nodes(sseg, model%nnode)
       mnode = unique_nodes(mseg, model%nnode)
-      snode = pack(snode, .not. is_in(snode, mnode, model%nnode))
-      mnode = pack(mnode, .not. is_in(mnode, unique_nodes(sseg, model%nnode), model%nnode))
-      radius = 0.0_wp
-      do k = 1, size(mseg, 2)
-         radius = max(radius, 2.0_wp*length2(model%x(:, mseg(2, k)) - model%x(:, mseg(1, k))))
-      end do
-      do k = 1, size(sseg, 2)
-         radius = max(radius, 2.0_wp*length2(model%x(:, sseg(2, k)) - model%x(:, sseg(1, k))))
-      end do
+      snode = pack(sall, .not. is_in(sall, mnode, model%nnode))
+      mnode = pack(mnode, .not. is_in(mnode, sall, model%nnode))
+      radius = 2.0_wp*max(longest_side(model%x, mseg), longest_side(model%x, sseg))
       call project_onto_sides(model%x, mseg, snode, radius, s_on, s_xi, error)
       if (allocated(error)) return
       call project_onto_sides(model%x, sseg, mnode, radius, m_on, m_xi, error)
@@ -126,8 +120,12 @@ contains
       call check_constrained_sides(model, ins, error)
       if (allocated(error)) return
       call apply_insertions(model, ins, nadded)
-      where (s_partner < 0) s_partner = ins(-s_partner)%node
-      where (m_partner < 0) m_partner = ins(-m_partner)%node
+      do k = 1, size(s_partner)
+         if (s_partner(k) < 0) s_partner(k) = ins(-s_partner(k))%node
+      end do
+      do k = 1, size(m_partner)
+         if (m_partner(k) < 0) m_partner(k) = ins(-m_partner(k))%node
+      end do
       ! (slave, master) node pairs, each slave node once
       allocate (pairs(2, count(s_partner > 0) + count(m_partner > 0)))
       m = 0
@@ -147,6 +145,17 @@ contains
       on_slave(selem) = .true.
       call add_to_sets(model, ins, model%pairs(p)%slave, on_slave)
    end subroutine insert_pair
+
+   !> The longest of the sides seg(:, k) = (a, b), 0 for none.
+   pure real(wp) function longest_side(x, seg) result(l)
+      real(wp), intent(in) :: x(:, :)
+      integer(ip), intent(in) :: seg(:, :)
+      integer :: k
+      l = 0.0_wp
+      do k = 1, size(seg, 2)
+         l = max(l, length2(x(:, seg(2, k)) - x(:, seg(1, k))))
+      end do
+   end function longest_side
 
    !> Side and parameter of the projection of each node of `query` onto the sides
    !> seg(:, k) = (a, b) of a surface: on(i) = 0 when no side is within `radius` or

@@ -25,7 +25,7 @@ module vemcontact_contact_iteration
    implicit none
    private
 
-   public :: contact_system_t, iteration_record_t, solve_contact
+   public :: contact_system_t, iteration_record_t, solve_contact, judge_conditioning
 
    !> One iteration, as logged and written to the results.
    type :: iteration_record_t
@@ -129,7 +129,7 @@ contains
       real(wp), allocatable :: f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:)
       real(wp) :: t0, rel, kmax, t_iter, t_fact, t_srch, step, rc_min, rel_prev, overclosure, change, rc
       logical :: warned, newton_solve, same_matrix, rebuilt
-      integer :: it, nchanged, maxit, nrise, j, verdict
+      integer :: it, nchanged, maxit, nrise, j
       character(len=160) :: buf
       type(iteration_record_t) :: rec
 
@@ -200,7 +200,8 @@ contains
             sys%factored_key = key_of(contact)
             sys%refactorized = .true.
             rc = sys%rcond()
-            call judge_conditioning(rc)
+            call judge_conditioning(rc, merge(maxval(contact%k, mask=contact%active, dim=1)/kmax, 0.0_wp, &
+                                              any(contact%active)), any(contact%active), warned, error, log)
             if (allocated(error)) return
             if (rc > 0.0_wp) rc_min = min(rc_min, rc)
          end if
@@ -353,35 +354,6 @@ contains
          t = line_search_step(dot_product(d, ku - fext), dot_product(d, kd), contact%k, g0, h)
       end function energy_step
 
-      subroutine judge_conditioning(rcv)
-         real(wp), intent(in) :: rcv
-         real(wp) :: ratio
-         character(len=120) :: msg
-         ratio = merge(maxval(contact%k, mask=contact%active, dim=1)/kmax, 0.0_wp, any(contact%active))
-         verdict = conditioning_verdict(rcv, ratio, any(contact%active))
-         select case (verdict)
-         case (cond_stop, cond_stop_penalty)
-            write (msg, '(a,es9.2,a)') 'error: the system is too ill-conditioned to solve accurately '// &
-               '(CHOLMOD''s reciprocal condition estimate ', rcv, ')'
-            if (verdict == cond_stop_penalty) then
-               call fatal_error(error, trim(msg)//new_line('a')//conditioning_hint(ratio), err_solver)
-            else
-               call fatal_error(error, trim(msg)//new_line('a')//'  = help: look for materials whose moduli '// &
-                                'differ by many orders of magnitude, nearly incompressible materials '// &
-                                '(nu close to 0.5) or degenerate elements', err_solver)
-            end if
-         case (cond_warn)
-            if (.not. warned .and. present(log)) then
-               write (msg, '(a,es9.2,a,es9.2,a)') '  warning: ill-conditioned system (rcond ', rcv, &
-                  '): results may carry relative errors of about ', epsilon(1.0_wp)/rcv, ' and more'
-               call log%say(trim(msg))
-               warned = .true.
-            end if
-         case (cond_ok)
-            continue
-         end select
-      end subroutine judge_conditioning
-
       !> Slave nodes that had a master segment at the start of the step and have none at
       !> its end slid past the end of the master surface: they carry no pressure and
       !> their neighbours the load they would carry; say so, naming them.
@@ -414,4 +386,39 @@ contains
          if (present(log)) call log%say('        (geometric contact stiffness off for this step: '//why//')')
       end subroutine geometric_off
    end subroutine solve_contact
+
+   !> Stop when a factor is too ill-conditioned to trust, warn (once: `warned`) when it
+   !> costs accuracy (conditioning_verdict); `ratio` is the stiffest closed spring
+   !> over the largest elastic diagonal entry (0 without closed contact).
+   subroutine judge_conditioning(rc, ratio, contact_closed, warned, error, log)
+      real(wp), intent(in) :: rc, ratio
+      logical, intent(in) :: contact_closed
+      logical, intent(inout) :: warned
+      type(error_t), allocatable, intent(out) :: error
+      type(logger_t), intent(in), optional :: log
+      character(len=120) :: msg
+      integer :: verdict
+      verdict = conditioning_verdict(rc, ratio, contact_closed)
+      select case (verdict)
+      case (cond_stop, cond_stop_penalty)
+         write (msg, '(a,es9.2,a)') 'error: the system is too ill-conditioned to solve accurately '// &
+            '(CHOLMOD''s reciprocal condition estimate ', rc, ')'
+         if (verdict == cond_stop_penalty) then
+            call fatal_error(error, trim(msg)//new_line('a')//conditioning_hint(ratio), err_solver)
+         else
+            call fatal_error(error, trim(msg)//new_line('a')//'  = help: look for materials whose moduli '// &
+                             'differ by many orders of magnitude, nearly incompressible materials '// &
+                             '(nu close to 0.5) or degenerate elements', err_solver)
+         end if
+      case (cond_warn)
+         if (.not. warned .and. present(log)) then
+            write (msg, '(a,es9.2,a,es9.2,a)') '  warning: ill-conditioned system (rcond ', rc, &
+               '): results may carry relative errors of about ', epsilon(1.0_wp)/rc, ' and more'
+            call log%say(trim(msg))
+            warned = .true.
+         end if
+      case (cond_ok)
+         continue
+      end select
+   end subroutine judge_conditioning
 end module vemcontact_contact_iteration

@@ -23,7 +23,7 @@ module vemcontact_contact_search
    private
 
    public :: segment_grid_t, build_segment_grid, query_segments, select_segment
-   public :: closest_segments, contact_graph_pairs, merge_node_pairs
+   public :: closest_segments, contact_graph_pairs, merge_node_pairs, median
 
    !> Distances within tie_rel * segment length are equal: the two distances to
    !> a shared vertex differ by round-off only (~1e-16 relative to coordinates),

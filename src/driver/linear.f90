@@ -22,8 +22,8 @@ module vemcontact_driver_linear
    use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_rhs, constrain_matrix
    use vemcontact_clock, only: wall_time
    use vemcontact_contact_active_set, only: contact_state_t
-   use vemcontact_contact_iteration, only: contact_system_t, solve_contact
-   use vemcontact_contact_rules, only: matrix_key_t, conditioning_verdict, cond_stop, cond_stop_penalty, cond_warn
+   use vemcontact_contact_iteration, only: contact_system_t, solve_contact, judge_conditioning
+   use vemcontact_contact_rules, only: matrix_key_t
    use vemcontact_contact_search, only: merge_node_pairs
    use vemcontact_sparse_matvec, only: sym_matvec
    use vemcontact_log, only: logger_t
@@ -153,26 +153,22 @@ contains
       logical, allocatable :: fixed(:)
       real(wp), allocatable :: f(:)
       real(wp) :: t0
+      logical :: warned
       self%iterations = 0
       self%factorizations = 0
       self%t_search = 0
-      if (present(contact)) then
-         if (contact%n > 0) then
-            fixed = st%fixed
-            fixed(1::2) = fixed(1::2) .or. self%unused
-            fixed(2::2) = fixed(2::2) .or. self%unused
-            allocate (f(size(u)))
-            call assemble_loads(model, st%force, st%dload, f)
-            call solve_contact(self, model, fixed, st%prescribed, f, u, contact, error, log)
-            return
-         end if
-      end if
       fixed = st%fixed
       ! nodes of no element carry nothing: hold them so the matrix stays regular
       fixed(1::2) = fixed(1::2) .or. self%unused
       fixed(2::2) = fixed(2::2) .or. self%unused
       allocate (f(size(u)))
       call assemble_loads(model, st%force, st%dload, f)
+      if (present(contact)) then
+         if (contact%n > 0) then
+            call solve_contact(self, model, fixed, st%prescribed, f, u, contact, error, log)
+            return
+         end if
+      end if
       self%refactorized = .false.
       self%t_factorize = 0
       if (.not. self%factored) then
@@ -190,7 +186,8 @@ contains
          if (allocated(error)) return
          self%t_factorize = wall_time() - t0
          self%factorizations = 1
-         call judge_conditioning(self%solver%rcond(), error, log)
+         warned = .false.
+         call judge_conditioning(self%solver%rcond(), 0.0_wp, .false., warned, error, log)
          if (allocated(error)) return
          self%factored_fixed = fixed
          self%factored = .true.
@@ -280,27 +277,6 @@ contains
          kmax = max(kmax, abs(self%k%val(self%k%col_ptr(j + 1) - 1)))
       end do
    end function largest_elastic_diagonal
-
-   !> Stop when the factor without contact is too ill-conditioned to trust, warn
-   !> when it costs accuracy (conditioning_verdict).
-   subroutine judge_conditioning(rc, error, log)
-      real(wp), intent(in) :: rc
-      type(error_t), allocatable, intent(out) :: error
-      type(logger_t), intent(in), optional :: log
-      character(len=120) :: buf
-      select case (conditioning_verdict(rc, 0.0_wp, .false.))
-      case (cond_stop, cond_stop_penalty)
-         write (buf, '(a,es9.2,a)') 'error: the system is too ill-conditioned to solve accurately '// &
-            '(CHOLMOD''s reciprocal condition estimate ', rc, ')'
-         call fatal_error(error, trim(buf)//new_line('a')//'  = help: look for materials whose moduli '// &
-                          'differ by many orders of magnitude, nearly incompressible materials '// &
-                          '(nu close to 0.5) or degenerate elements', err_solver)
-      case (cond_warn)
-         write (buf, '(a,es9.2,a,es9.2,a)') '  warning: ill-conditioned system (rcond ', rc, &
-            '): results may carry relative errors of about ', epsilon(1.0_wp)/rc, ' and more'
-         if (present(log)) call log%say(trim(buf))
-      end select
-   end subroutine judge_conditioning
 
    !> b = a, copying only the values when b already has a's pattern (the common
    !> case in the contact iterations: the pattern is fixed, the values change).
