@@ -51,16 +51,16 @@ module vemcontact_linalg_gmres
 
 contains
 
-   !> Solve A x = b from the initial x: at least one iteration, until |b - A x| <= tol
-   !> (2-norm) and then on while each iteration still lowers the residual by the
-   !> factor `stall` (e.g. 0.5), so that a solve with a good preconditioner ends on
-   !> its round-off floor; restarts every `restart` iterations, at most `maxit`
+   !> Solve A x = b from the initial x: at least one iteration (unless b - A x = 0),
+   !> until |b - A x| <= tol (2-norm), or, once it is below `floor` (the round-off
+   !> the caller expects), until an iteration lowers it by less than the factor
+   !> `stall` (e.g. 0.5); restarts every `restart` iterations, at most `maxit`
    !> iterations in all.  A restart cycle that lowers the residual by less than
-   !> `stall` ends the solve: the preconditioner is too far from A (not converged
-   !> when still above tol).  x is the last iterate.
-   subroutine gmres(op, b, x, tol, restart, maxit, stall, res, error)
+   !> `stall` ends the solve: the preconditioner is too far from A.  Converged: the
+   !> residual is below max(tol, floor).  x is the last iterate.
+   subroutine gmres(op, b, x, tol, floor, restart, maxit, stall, res, error)
       class(linear_operator_t), intent(inout) :: op
-      real(wp), intent(in) :: b(:), tol, stall
+      real(wp), intent(in) :: b(:), tol, floor, stall
       real(wp), intent(inout) :: x(:)
       integer, intent(in) :: restart, maxit
       type(gmres_result_t), intent(out) :: res
@@ -68,6 +68,7 @@ contains
       real(wp), allocatable :: v(:, :), h(:, :), cs(:), sn(:), g(:), y(:), w(:), z(:)
       real(wp) :: beta, cycle_start, t, rho, rho_prev
       integer :: n, m, j, i
+      logical :: done
 
       n = size(b)
       m = max(1, restart)
@@ -80,6 +81,7 @@ contains
          if (.not. beta > 0.0_wp) exit
          cycle_start = beta
          rho = beta
+         done = .false.
          v(:, 1) = w/beta
          g = 0.0_wp
          g(1) = beta
@@ -111,8 +113,8 @@ contains
             g(j) = cs(j)*g(j)
             rho_prev = rho
             rho = abs(g(j + 1))
-            if (.not. abs(h(j, j)) > 0.0_wp .or. .not. rho > 0.0_wp) exit
-            if (rho <= tol .and. rho > stall*rho_prev) exit
+            done = .not. abs(h(j, j)) > 0.0_wp .or. rho <= tol .or. (rho <= floor .and. rho > stall*rho_prev)
+            if (done) exit
          end do
          ! x <- x + M^-1 V y with H y = g (upper triangular)
          do i = j, 1, -1
@@ -131,9 +133,9 @@ contains
          call residual_of(x, w)
          beta = safe_norm2(w)
          res%residual = beta
-         if (beta > stall*cycle_start .or. beta <= tol) exit
+         if (done .or. beta > stall*cycle_start .or. beta <= tol) exit
       end do
-      res%converged = beta <= tol
+      res%converged = beta <= max(tol, floor)
    contains
       subroutine residual_of(xx, r)
          real(wp), intent(in) :: xx(:)
