@@ -278,7 +278,7 @@ def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=
     # global generator ids; clipped and cut pieces by coordinates
     key_chunks, xy_chunks, lens, owners = [], [], [], []
     piece_chunks, piece_lens = [], []
-    for own, ptr, V, keep, keys, pieces, owner in cells:
+    for own, ptr, V, keep, keys, pieces, _owner in cells:
         cnt = np.diff(ptr)[keep]
         starts = ptr[:-1][keep]
         rep = np.repeat(starts, cnt) + (np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt))

@@ -252,7 +252,7 @@ def iteration_series(runs: list[str], labels=None, step: int = 0) -> list[dict]:
     active counts, converged flag."""
     out = []
     logs = [read_log(r) for r in runs]
-    for i, lg in enumerate(logs):
+    for _i, lg in enumerate(logs):
         name, its, conv = lg.step(step)
         out.append({"job": lg.job, "step": name, "K": lg.penalty(step), "converged": conv,
                     "peaks": [it.pressure for it in its], "active": [it.active for it in its],
