@@ -5,7 +5,7 @@
 program test_deck_outputs
    use vemcontact_testing, only: checker_t
    use vemcontact_error, only: error_t
-   use vemcontact_model, only: model_t, output_requested, output_node, output_element, output_contact, &
+   use vemcontact_model, only: model_t, output_requested, find_set, output_node, output_element, output_contact, &
                                totals_yes
    use vemcontact_deck_reader, only: read_deck
    implicit none
@@ -59,9 +59,35 @@ program test_deck_outputs
    call t%check(has_warning(':27: warning: output variable ENER of *EL FILE'), 'ENER named at its line')
    call t%check(has_warning(':29: warning: output variable CELS of *CONTACT FILE'), 'CELS named at its line')
    call t%check(has_warning(':38: warning: S under *NODE FILE is ignored'), 'S under *NODE FILE named')
+   call calculix_forms()
    call t%finish()
 
 contains
+
+   !> Forms CalculiX users write: GENERATE with an increment and over several lines,
+   !> UNSORTED, *STEP AMPLITUDE/INC/INCF, *STATIC DIRECT with a time line, *ELASTIC with
+   !> a temperature field.
+   subroutine calculix_forms()
+      type(model_t) :: f
+      type(error_t), allocatable :: e
+      integer :: k
+      call read_deck('../data/deck/calculix_forms.inp', f, e)
+      call t%check(.not. allocated(e), 'calculix_forms.inp reads without error')
+      if (allocated(e)) then
+         print '(a)', e%message
+         return
+      end if
+      k = find_set(f%nsets, 'LEFT')
+      call t%check(k > 0, 'GENERATE set LEFT')
+      if (k > 0) call t%check(all(f%node_id(f%nsets(k)%items) == [1, 4]), 'GENERATE 1, 4, 3 gives nodes 1 and 4')
+      k = find_set(f%nsets, 'RIGHT')
+      if (k > 0) call t%check(all(f%node_id(f%nsets(k)%items) == [3, 6]), 'UNSORTED set RIGHT: nodes 3 and 6')
+      k = find_set(f%elsets, 'E1')
+      if (k > 0) call t%equal(size(f%elsets(k)%items), 2, 'two GENERATE lines add up')
+      call t%check(size(f%warnings) == 0, 'no warnings')
+      call t%check(f%has_output_requests .and. output_requested(f, 1, 'U') .and. output_requested(f, 1, 'S') &
+                   .and. .not. output_requested(f, 1, 'RF'), 'U and S requested, RF not')
+   end subroutine calculix_forms
 
    logical function has_warning(text)
       character(len=*), intent(in) :: text
