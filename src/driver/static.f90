@@ -30,6 +30,7 @@ module vemcontact_driver_static
       character(len=:), allocatable :: job
       integer :: ordering = 0                 !< vemcontact_driver_linear's ordering_*
       logical :: write_matrix = .false.
+      logical :: compress_vtu = .true.        !< zlib-compressed .vtu arrays
    end type run_options_t
 
 contains
@@ -157,7 +158,7 @@ contains
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)
          call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
-                        s_elem, s_node, error)
+                        s_elem, s_node, error, opts%compress_vtu)
          if (allocated(error)) return
          vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
          times = [times, real(istep, wp)]
@@ -169,7 +170,7 @@ contains
             ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per pair
             tab = contact%table(model, u_out)
             write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
-            call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, error)
+            call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, error, opts%compress_vtu)
             if (allocated(error)) return
             vtu_files = [vtu_files, string_t(opts%out_dir//'/'//opts%job//trim(buf))]
             times = [times, real(istep, wp)]

@@ -2,7 +2,8 @@
 !> (plus a node in no element) with deterministic, non-round field values, and
 !> the values it expects a reader to find as text with 18 significant digits
 !> (enough to read back as the same doubles).  check_vtu.py reads the .vtu
-!> with meshio and compares exactly (CTest test test_output_vtu_meshio).
+!> (zlib-compressed, and raw as test_output_vtu_raw.vtu) with meshio and
+!> compares exactly (CTest test test_output_vtu_meshio).
 !> Files go next to the test executable, i.e. into the build tree.
 !> This program itself checks the atomic write (no .tmp left behind), the
 !> errors for bad shapes and unwritable paths, and the .pvd text.
@@ -47,6 +48,9 @@ program test_output_vtu
    inquire (file=vtu//'.tmp', exist=exists)
    call t%check(.not. exists, 'no .tmp left behind')
    call write_expected(dir//'test_output_vtu.expected', model, u, s_elem, s_node)
+   ! the same uncompressed (--raw-vtu)
+   call write_vtu(dir//'test_output_vtu_raw.vtu', model, u, s_elem, s_node, error, compress=.false.)
+   call t%check(.not. allocated(error), 'write_vtu (raw) succeeds')
 
    ! wrong shape: internal error, nothing written
    call write_vtu(dir//'test_output_vtu_bad.vtu', model, u(:, 1:2), s_elem, s_node, error)
