@@ -62,11 +62,14 @@ contains
       end select
    end function status_name
 
-   !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, CSLIP, CNAREA, STATUS, PAIR, NODE_ID;
-   !> zlib-compressed arrays unless `compress` is present and false.
-   subroutine write_contact_vtu(path, tab, error, compress)
+   !> All entries of `tab` as VTK vertices with point data U (the slave nodes'
+   !> displacements, so that warping moves them with the mesh), COPEN, CPRESS,
+   !> CSLIP, CNAREA, STATUS, PAIR, NODE_ID; zlib-compressed arrays unless
+   !> `compress` is present and false.
+   subroutine write_contact_vtu(path, tab, u, error, compress)
       character(len=*), intent(in) :: path
       type(contact_table_t), intent(in) :: tab
+      real(wp), intent(in) :: u(:, :)     !< (2, nnode) the step's reported displacements
       type(error_t), allocatable, intent(out) :: error
       logical, intent(in), optional :: compress
       character(len=1), parameter :: nl = new_line('a')
@@ -90,7 +93,11 @@ contains
       call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0"' &
                //vtk_file_attributes(z)//'>'//nl//'<UnstructuredGrid>'//nl &
                //'<Piece NumberOfPoints="'//itoa(int(n, i8))//'" NumberOfCells="'//itoa(int(n, i8))//'">'//nl &
-               //'<PointData>'//nl, ios)
+               //'<PointData Vectors="U">'//nl, ios)
+      allocate (xyz(3, n))
+      xyz(1:2, :) = u(:, tab%node)
+      xyz(3, :) = 0.0_wp
+      call put_array(unit, 'type="Float64" Name="U" NumberOfComponents="3"', as_bytes(xyz), ios, z)
       call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios, z)
       call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios, z)
       call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios, z)
@@ -101,7 +108,6 @@ contains
       call put_array(unit, 'type="'//itype//'" Name="PAIR"', as_bytes(ibuf), ios, z)
       call put_array(unit, 'type="'//itype//'" Name="NODE_ID"', as_bytes(tab%node_id), ios, z)
       call put(unit, '</PointData>'//nl//'<Points>'//nl, ios)
-      allocate (xyz(3, n))
       xyz(1:2, :) = tab%x
       xyz(3, :) = 0.0_wp
       call put_array(unit, 'type="Float64" Name="Points" NumberOfComponents="3"', as_bytes(xyz), ios, z)

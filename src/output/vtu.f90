@@ -21,6 +21,7 @@ module vemcontact_output_vtu
    use vemcontact_post_stress, only: principal_stresses
    use vemcontact_output_base64, only: base64_encode, base64_length, as_bytes
    use vemcontact_output_zlib, only: zlib_bound, zlib_compress
+   use vemcontact_output_xml, only: xml_escape
    implicit none
    private
 
@@ -43,6 +44,17 @@ module vemcontact_output_vtu
    !> 3 MiB keeps the encoded buffer (4 MiB) in cache-friendly range.
    integer(i8), parameter :: piece_bytes = 3_i8*1048576_i8
 
+   !> Results beyond U and S that a step's .vtu carries when the driver has them
+   !> (docs/output-format.md); each is written when allocated.
+   type, public :: vtu_extras_t
+      real(wp), allocatable :: e_node(:, :)     !< (4, nnode) strain xx, yy, zz, engineering xy
+      real(wp), allocatable :: e_elem(:, :)     !< (4, nelem)
+      real(wp), allocatable :: rf(:, :)         !< (2, nnode) reaction forces
+      integer(ip), allocatable :: elem_set(:)   !< (nelem) index into model%elsets, 0 none
+      integer(ip), allocatable :: elem_part(:)  !< (nelem) part (connected body), 1-based
+      real(wp) :: time = 0.0_wp                 !< step time: FieldData TimeValue
+   end type vtu_extras_t
+
    interface
       function c_rename(old, new) bind(C, name='rename') result(rc)
          import :: c_char, c_int
@@ -57,7 +69,10 @@ contains
    !> Point data: U (3 comps, z = 0), S (xx,yy,zz,xy averaged at nodes), S1, S3,
    !> MISES, NODE_ID; cell data: S (element stress), MATERIAL, ELEMENT_ID.
    !> Arrays are zlib-compressed unless `compress` is present and false.
-   subroutine write_vtu(path, model, u, s_elem, s_node, error, compress)
+   !> With `extra`: FieldData TimeValue and the names of the element sets and
+   !> materials (an Int32 array "ELSET:name" or "MATERIAL:name" holding the id),
+   !> point data RF and E, cell data E, ELSET and PART.
+   subroutine write_vtu(path, model, u, s_elem, s_node, error, compress, extra)
       character(len=*), intent(in) :: path
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:, :)        !< (2, nnode)
@@ -65,6 +80,7 @@ contains
       real(wp), intent(in) :: s_node(:, :)   !< (4, nnode)
       type(error_t), allocatable, intent(out) :: error
       logical, intent(in), optional :: compress
+      type(vtu_extras_t), intent(in), optional :: extra
       character(len=:), allocatable :: tmp, itype
       character(len=*), parameter :: s_names = ' NumberOfComponents="9"'//tensor_names
       character(len=512) :: msg
@@ -85,6 +101,13 @@ contains
                           err_internal)
          return
       end if
+      if (present(extra)) then
+         if (.not. extras_fit(extra, model)) then
+            call fatal_error(error, 'write_vtu: extra array shapes do not match the model ('//path//')', &
+                             err_internal)
+            return
+         end if
+      end if
       itype = int_type_name()
       tmp = path//'.tmp'
       open (newunit=unit, file=tmp, access='stream', form='unformatted', status='replace', &
@@ -96,8 +119,10 @@ contains
 
       call put(unit, '<?xml version="1.0"?>'//nl &
                //'<VTKFile type="UnstructuredGrid" version="1.0"'//vtk_file_attributes(z) &
-               //'>'//nl//'<UnstructuredGrid>'//nl &
-               //'<Piece NumberOfPoints="'//itoa(int(model%nnode, i8)) &
+               //'>'//nl//'<UnstructuredGrid>'//nl, ios)
+      ! the dataset's FieldData comes before its pieces
+      if (present(extra)) call put_field_data(unit, model, extra, itype, z, ios)
+      call put(unit, '<Piece NumberOfPoints="'//itoa(int(model%nnode, i8)) &
                //'" NumberOfCells="'//itoa(int(model%nelem, i8))//'">'//nl, ios)
 
       ! point data
@@ -116,6 +141,14 @@ contains
       call put_array(unit, 'type="Float64" Name="MISES"', as_bytes(vm), ios, z)
       deallocate (p1, p3, vm)
       call put_array(unit, 'type="'//itype//'" Name="NODE_ID"', as_bytes(model%node_id(1:model%nnode)), ios, z)
+      if (present(extra)) then
+         if (allocated(extra%rf)) then
+            xyz(1:2, :) = extra%rf
+            call put_array(unit, 'type="Float64" Name="RF" NumberOfComponents="3"', as_bytes(xyz), ios, z)
+         end if
+         if (allocated(extra%e_node)) call put_array(unit, 'type="Float64" Name="E"'//s_names, &
+                                                     as_bytes(full_tensor(extra%e_node, 0.5_wp)), ios, z)
+      end if
       call put(unit, '</PointData>'//nl, ios)
 
       ! cell data
@@ -125,6 +158,14 @@ contains
       ibuf = int(model%elem_mat(1:model%nelem), ip)
       call put_array(unit, 'type="'//itype//'" Name="MATERIAL"', as_bytes(ibuf), ios, z)
       call put_array(unit, 'type="'//itype//'" Name="ELEMENT_ID"', as_bytes(model%elem_id(1:model%nelem)), ios, z)
+      if (present(extra)) then
+         if (allocated(extra%e_elem)) call put_array(unit, 'type="Float64" Name="E"'//s_names, &
+                                                     as_bytes(full_tensor(extra%e_elem, 0.5_wp)), ios, z)
+         if (allocated(extra%elem_set)) &
+            call put_array(unit, 'type="'//itype//'" Name="ELSET"', as_bytes(extra%elem_set), ios, z)
+         if (allocated(extra%elem_part)) &
+            call put_array(unit, 'type="'//itype//'" Name="PART"', as_bytes(extra%elem_part), ios, z)
+      end if
       call put(unit, '</CellData>'//nl, ios)
 
       ! geometry: z = 0
@@ -160,6 +201,52 @@ contains
       end if
       call replace_file(tmp, path, error)
    end subroutine write_vtu
+
+   !> The extras have the model's sizes.
+   pure logical function extras_fit(extra, model)
+      type(vtu_extras_t), intent(in) :: extra
+      type(model_t), intent(in) :: model
+      extras_fit = .true.
+      if (allocated(extra%e_node)) extras_fit = extras_fit .and. size(extra%e_node, 1) == 4 &
+                                                .and. size(extra%e_node, 2) == model%nnode
+      if (allocated(extra%e_elem)) extras_fit = extras_fit .and. size(extra%e_elem, 1) == 4 &
+                                                .and. size(extra%e_elem, 2) == model%nelem
+      if (allocated(extra%rf)) extras_fit = extras_fit .and. size(extra%rf, 1) == 2 &
+                                            .and. size(extra%rf, 2) == model%nnode
+      if (allocated(extra%elem_set)) extras_fit = extras_fit .and. size(extra%elem_set) == model%nelem
+      if (allocated(extra%elem_part)) extras_fit = extras_fit .and. size(extra%elem_part) == model%nelem
+   end function extras_fit
+
+   !> FieldData: TimeValue (ParaView's name for the time of a dataset), and for
+   !> every element set that is some element's ELSET and every material, an Int32
+   !> array of one value, the id, named "ELSET:name" or "MATERIAL:name" (meshio
+   !> reads them as field_data; VTK XML has string arrays, but meshio cannot read them).
+   subroutine put_field_data(unit, model, extra, itype, z, ios)
+      integer, intent(in) :: unit
+      type(model_t), intent(in) :: model
+      type(vtu_extras_t), intent(in) :: extra
+      character(len=*), intent(in) :: itype
+      logical, intent(in) :: z
+      integer, intent(inout) :: ios
+      integer :: k
+      character(len=*), parameter :: one = '" NumberOfTuples="1"'
+      call put(unit, '<FieldData>'//new_line('a'), ios)
+      call put_array(unit, 'type="Float64" Name="TimeValue" NumberOfTuples="1"', as_bytes([extra%time]), ios, z)
+      if (allocated(extra%elem_set) .and. allocated(model%elsets)) then
+         do k = 1, size(model%elsets)
+            if (.not. any(extra%elem_set == k)) cycle
+            call put_array(unit, 'type="'//itype//'" Name="ELSET:'//xml_escape(model%elsets(k)%name)//one, &
+                           as_bytes([int(k, ip)]), ios, z)
+         end do
+      end if
+      if (allocated(model%materials)) then
+         do k = 1, size(model%materials)
+            call put_array(unit, 'type="'//itype//'" Name="MATERIAL:'//xml_escape(model%materials(k)%name)//one, &
+                           as_bytes([int(k, ip)]), ios, z)
+         end do
+      end if
+      call put(unit, '</FieldData>'//new_line('a'), ios)
+   end subroutine put_field_data
 
    !> Rename `from` to `to`, replacing `to` atomically (POSIX rename).
    subroutine replace_file(from, to, error)

@@ -4,14 +4,19 @@
                          [--units TEXT] [-o DIR] [--format png|pdf]
 
 RESULT is a .vtu file or a .pvd collection (default: its last step).  Fields:
-MISES, S1, S3, U (magnitude), U:x, U:y, S:xx, S:yy, S:zz, S:xy; prefix cell: for
-element values (cell:S:yy).  One picture per field, named JOB_FIELD.png.
+MISES, S1, S3, U (magnitude), U:x, U:y, S:xx, S:yy, S:zz, S:xy, E:xx, E:yy, E:zz,
+E:xy (tensor shear, gamma/2), RF:x, RF:y; prefix cell: for element values (cell:S:yy).  One picture per field, named JOB_FIELD.png.  When
+the displacements are zero (a geostatic step) the default is S1, S3, MISES, S:yy;
+a field that is the same everywhere is drawn in one colour with its value in the
+title, without a colour bar.
 """
 from __future__ import annotations
 
 import argparse
 import os
 import sys
+
+import numpy as np
 
 from .results import ResultError, contact_file, read_contact_points, read_vtu, step_files
 from .contour import plot
@@ -55,7 +60,16 @@ def main(argv=None) -> int:
             if len(v) < 4 or len(v) % 2:
                 raise ResultError(f"--line {text}: expected an even number (at least 4) of coordinates")
             lines.append([v[i:i + 2] for i in range(0, len(v), 2)])
-        for f in a.field or ["U:x", "U:y", "S1", "S3", "MISES"]:
+        fields = a.field
+        if not fields:
+            fields = ["U:x", "U:y", "S1", "S3", "MISES"]
+            if not np.asarray(res.point_data["U"]).any():
+                # a geostatic step reports zero displacements by construction: its
+                # picture is the stress state
+                fields = ["S1", "S3", "MISES", "S:yy"]
+                print(f"vc-plot: note: {vtu}: displacements are zero (a geostatic step): drawing stresses only",
+                      file=sys.stderr)
+        for f in fields:
             out = os.path.join(outdir, f"{job}_{f.replace(':', '_')}.{a.format}")
             units = a.units.split(",")
             unit = units[0] if f.removeprefix("cell:").startswith("U") or len(units) == 1 else units[1]

@@ -37,12 +37,18 @@ def plot(res: PolyResult, spec: str, out: str, deformed: float | str | None = No
             scale = float(deformed)
         xy = xy + scale * u
     values, where, label = field_values(res, spec)
+    # a field without variation (U of a geostatic step, zero by construction) gets
+    # one flat colour and its value in the title, not a colour bar over nothing
+    flat = len(values) > 0 and float(np.ptp(values)) == 0.0
     # figure shaped after the domain (plus room for the colour bar)
     ext = np.ptp(xy, axis=0)
     aspect = float(ext[0] / ext[1]) if ext[1] > 0 else 1.0
     fig, ax = plt.subplots(figsize=(min(11.0, max(4.5, 5.0 * aspect + 2.2)), 5.5), dpi=150)
     verts = [xy[p] for p in res.polygons]
-    if where == "point":
+    if flat:
+        m = None
+        ax.add_collection(PolyCollection(verts, facecolors="0.85", edgecolors="k", linewidths=0.15))
+    elif where == "point":
         tri = Triangulation(xy[:, 0], xy[:, 1], fan_triangles(res.polygons))
         m = ax.tripcolor(tri, values, shading="gouraud", cmap="viridis")
         ax.add_collection(PolyCollection(verts, facecolors="none", edgecolors="k", linewidths=0.15, alpha=0.5))
@@ -70,11 +76,14 @@ def plot(res: PolyResult, spec: str, out: str, deformed: float | str | None = No
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
-    cb = fig.colorbar(m, ax=ax, shrink=0.85)
-    cb.set_label(f"{label} [{units}]" if units else label)
+    if m is not None:
+        cb = fig.colorbar(m, ax=ax, shrink=0.85)
+        cb.set_label(f"{label} [{units}]" if units else label)
     t = title or f"{label}"
+    if flat:
+        t += f" = {values[0]:.6g}{' ' + units if units else ''} everywhere"
     if deformed is not None:
-        t += f"  (deformed shape, displacements x {scale:.3g})"
+        t += f"  (deformed shape, displacements x {scale:.3g})" if scale else "  (displacements are zero: undeformed shape)"
     ax.set_title(t, fontsize=10)
     fig.tight_layout()
     fig.savefig(out)
