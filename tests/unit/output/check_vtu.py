@@ -5,7 +5,10 @@ text file (18 significant digits, which parse back to the same doubles); the
 compressed file must also decode with Python's own zlib and base64 following
 VTK's block layout, independently of meshio.
 
-Usage: check_vtu.py COMPRESSED.vtu RAW.vtu FILE.expected
+The third file has the extras (E = S/1000 with engineering shear, RF = 5 U,
+ELSET, PART, the set and material names as FieldData, TimeValue).
+
+Usage: check_vtu.py COMPRESSED.vtu RAW.vtu EXTRA.vtu FILE.expected
 Exits non-zero with a message on the first mismatch.
 """
 import base64
@@ -78,7 +81,31 @@ def decode_compressed(text):
     return out
 
 
-def main(vtu, raw_vtu, expected_path):
+def check_extras(vtu, expected_path):
+    exp, _ = read_expected(expected_path)
+    mesh = meshio.read(vtu)
+    e = tensor9(exp["S_point"] / 1000)
+    e[:, [1, 3]] /= 2          # the tensor holds gamma_xy / 2
+    if not np.allclose(mesh.point_data["E"], e, rtol=1e-15, atol=0):
+        raise SystemExit("FAIL point E")
+    e = tensor9(exp["S_cell"] / 1000)
+    e[:, [1, 3]] /= 2
+    if not np.allclose(np.concatenate(mesh.cell_data["E"]), e, rtol=1e-15, atol=0):
+        raise SystemExit("FAIL cell E")
+    rf = np.column_stack([5 * exp["U"][:, :2], np.zeros(len(exp["U"]))])
+    same("point RF", mesh.point_data["RF"], rf)
+    same("cell ELSET", np.concatenate(mesh.cell_data["ELSET"]), np.array([2, 1, 2], np.int32))
+    same("cell PART", np.concatenate(mesh.cell_data["PART"]), np.array([1, 1, 2], np.int32))
+    fd = {k: np.asarray(v).ravel().tolist() for k, v in mesh.field_data.items()}
+    expected = {"TimeValue": [2.5], "ELSET:PLATE": [1], "ELSET:A&B<C>": [2], "MATERIAL:ROCK": [1],
+                "MATERIAL:CONCRETE": [2]}
+    if fd != expected:
+        raise SystemExit(f"FAIL field data {fd}, expected {expected}")
+    print("ok field data (names escaped, unused set left out)")
+
+
+def main(vtu, raw_vtu, extra_vtu, expected_path):
+    check_extras(extra_vtu, expected_path)
     check_file(raw_vtu, expected_path, compressed=False)
     check_file(vtu, expected_path, compressed=True)
     # independent decoding of the compressed arrays: the same bytes as the raw file's
@@ -144,6 +171,6 @@ def check_file(vtu, expected_path, compressed):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    if len(sys.argv) != 5:
         raise SystemExit(__doc__)
-    main(sys.argv[1], sys.argv[2], sys.argv[3])
+    main(*sys.argv[1:5])

@@ -14,6 +14,7 @@ add_test(NAME test_output_vtu_meshio
   COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/check_vtu.py"
           "$<TARGET_FILE_DIR:test_output_vtu>/test_output_vtu.vtu"
           "$<TARGET_FILE_DIR:test_output_vtu>/test_output_vtu_raw.vtu"
+          "$<TARGET_FILE_DIR:test_output_vtu>/test_output_vtu_extra.vtu"
           "$<TARGET_FILE_DIR:test_output_vtu>/test_output_vtu.expected")
 set_tests_properties(test_output_vtu PROPERTIES FIXTURES_SETUP vc_output_vtu_file)
 set_tests_properties(test_output_vtu_meshio PROPERTIES
