@@ -53,6 +53,7 @@ program vemcontact_main
    opts%job = cli%job
    opts%ordering = cli%ordering
    opts%write_matrix = cli%write_matrix
+   opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)
    call log%phase('total', wall_time() - tstart)

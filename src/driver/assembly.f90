@@ -3,7 +3,8 @@
 module vemcontact_driver_assembly
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, append_message, err_model, err_internal
-   use vemcontact_model, only: model_t, dload_t, location_string, dload_grav, dload_pressure, dload_hydrostatic
+   use vemcontact_model, only: model_t, dload_t, location_string, dload_grav, dload_pressure, dload_hydrostatic, &
+                               plane_stress
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_material_elastic, only: elastic_matrix, out_of_plane_stress
@@ -12,7 +13,7 @@ module vemcontact_driver_assembly
    implicit none
    private
 
-   public :: assemble_stiffness, assemble_loads, element_stresses, max_element_nodes, hydrostatic_moments
+   public :: assemble_stiffness, assemble_loads, element_stresses, element_strains, max_element_nodes, hydrostatic_moments
 
 contains
 
@@ -190,4 +191,41 @@ contains
          end associate
       end do
    end subroutine element_stresses
+
+   !> Element strains E (total strain, Abaqus' E) `(xx, yy, zz, xy)` with the
+   !> engineering shear strain gamma_xy = 2 eps_xy, as Abaqus writes E12; the
+   !> same recovery as element_stresses: every kernel's stress is d times its
+   !> (projected, for VEM; Gauss-averaged, for the quad) strain, so the kernel
+   !> run with d = identity returns that strain, and S = D E holds element by
+   !> element.  zz: 0 in plane strain; in plane stress the thickness strain
+   !> -nu/(1 - nu) (xx + yy) that makes S_zz zero.
+   subroutine element_strains(model, u, e_elem)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      real(wp), intent(out) :: e_elem(:, :)
+      real(wp), allocatable :: xy(:, :), ue(:), work(:)
+      real(wp), parameter :: identity(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
+                                                       0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
+      real(wp) :: eps(3), ezz, nu
+      integer :: e, n, i, nmax
+      integer(ip) :: first, node
+      nmax = max_element_nodes(model)
+      allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)))
+      do e = 1, model%nelem
+         first = model%elem_ptr(e)
+         n = model%elem_ptr(e + 1) - first
+         do i = 1, n
+            node = model%elem_conn(first + i - 1)
+            xy(:, i) = model%x(:, node)
+            ue(2*i - 1:2*i) = u(2*node - 1:2*node)
+         end do
+         call element_stress(model%elem_form(e), xy(:, :n), identity, ue(:2*n), work, eps)
+         ezz = 0.0_wp
+         if (model%elem_plane(e) == plane_stress) then
+            nu = model%materials(model%elem_mat(e))%poisson
+            ezz = -nu/(1.0_wp - nu)*(eps(1) + eps(2))
+         end if
+         e_elem(:, e) = [eps(1), eps(2), ezz, eps(3)]
+      end do
+   end subroutine element_strains
 end module vemcontact_driver_assembly

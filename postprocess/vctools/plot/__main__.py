@@ -5,7 +5,8 @@
                          [--clip P] [--exclude X,Y[,R] ...] [-o DIR] [--format png|pdf]
 
 RESULT is a .vtu file or a .pvd collection (default: its last step).  Fields:
-MISES, S1, S3, U (magnitude), U:x, U:y, S:xx, S:yy, S:zz, S:xy; prefix cell: for
+MISES, S1, S3, U (magnitude), U:x, U:y, S:xx, S:yy, S:zz, S:xy, E:xx, E:yy, E:zz,
+E:xy (tensor shear, gamma/2), RF:x, RF:y; prefix cell: for
 element values (cell:S:yy).  One picture per field, named JOB_FIELD.png, titled
 with the field and the step (its number and, from JOB.h5, its name); the axes
 carry the length unit, the colour bar the field's unit.  --line overlays (given
@@ -14,12 +15,17 @@ range can leave out a singular point (--exclude: values within R of (X, Y); R
 defaults to 2 % of the model's size) and clip at a percentile (--clip 99: from
 the 1st to the 99th percentile); the bar then says so and shows arrows for the
 values beyond it.
+When the displacements are zero (a geostatic step) the default is S1, S3, MISES,
+S:yy; a field that is the same everywhere is drawn in one colour with its value in
+the title, without a colour bar.
 """
 from __future__ import annotations
 
 import argparse
 import os
 import sys
+
+import numpy as np
 
 from .results import ResultError, contact_file, read_contact_points, read_vtu, step_files, step_label
 from .contour import plot
@@ -79,7 +85,16 @@ def main(argv=None) -> int:
                 raise ResultError(f"--exclude {text}: expected X,Y or X,Y,R with R > 0")
             exclude.append((v[0], v[1], v[2] if len(v) == 3 else 0.02 * size))
         step = step_label(vtu, a.step or len(files))
-        for f in a.field or ["U:x", "U:y", "S1", "S3", "MISES"]:
+        fields = a.field
+        if not fields:
+            fields = ["U:x", "U:y", "S1", "S3", "MISES"]
+            if not np.asarray(res.point_data["U"]).any():
+                # a geostatic step reports zero displacements by construction: its
+                # picture is the stress state
+                fields = ["S1", "S3", "MISES", "S:yy"]
+                print(f"vc-plot: note: {vtu}: displacements are zero (a geostatic step): drawing stresses only",
+                      file=sys.stderr)
+        for f in fields:
             out = os.path.join(outdir, f"{job}_{f.replace(':', '_')}.{a.format}")
             units = a.units.split(",")
             unit = units[0] if f.removeprefix("cell:").startswith("U") or len(units) == 1 else units[1]

@@ -107,7 +107,9 @@ def read_vtu(path: str) -> PolyResult:
                       point_data=dict(mesh.point_data), cell_data=cell_data, path=path)
 
 
-COMPONENTS = {"U": ["x", "y", "z"], "S": ["xx", "yy", "zz", "xy"]}
+# the .vtu's tensors have 9 components, row by row (docs/output-format.md)
+TENSOR = ["xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"]
+COMPONENTS = {"U": ["x", "y", "z"], "RF": ["x", "y", "z"], "S": TENSOR, "E": TENSOR}
 
 
 def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
