@@ -171,8 +171,8 @@ module vemcontact_model
    !> cannot compute are left out (with a warning when the deck is read).
    type :: output_request_t
       integer :: category = 0                 !< output_node, output_element or output_contact
-      !> a *... PRINT request (CalculiX writes it to its .dat file; vemcontact to the log and
-      !> HDF5), else a result-file request (*... FILE, *... OUTPUT: VTU and HDF5)
+      !> a *... PRINT request (CalculiX writes it to its .dat file; vemcontact to
+      !> JOB_print_NNNN.csv), else a result-file request (*... FILE, *... OUTPUT: VTU, HDF5, CSV)
       logical :: print = .false.
       character(len=:), allocatable :: set    !< NSET= or ELSET= (upper case), '' = the whole model
       integer :: totals = totals_no           !< TOTALS= of a PRINT request

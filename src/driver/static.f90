@@ -18,6 +18,8 @@ module vemcontact_driver_static
    use vemcontact_output_pvd, only: write_pvd
    use vemcontact_output_hdf5, only: h5_writer_t
    use vemcontact_output_contact, only: write_contact_csv, write_contact_vtu
+   use vemcontact_output_selection, only: field_selection_t, step_selection
+   use vemcontact_output_print, only: has_print_requests, write_print_csv
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_log, only: logger_t
@@ -56,6 +58,7 @@ contains
       integer, allocatable :: rf_sets(:)
       type(string_t), allocatable :: set_names(:)
       type(vtu_extras_t) :: extra
+      type(field_selection_t) :: sel
       type(string_t), allocatable :: vtu_files(:), warnings(:)
       real(wp) :: t0
       integer :: istep, iw
@@ -182,39 +185,45 @@ contains
          end do
          call log_reactions(extra%rf, f, set_names, set_rf)
          extra%time = real(istep, wp)
+         ! the fields the deck's output requests select (all without requests)
+         sel = step_selection(model, istep)
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)
          call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
-                        s_elem, s_node, error, opts%compress_vtu, extra)
+                        s_elem, s_node, error, opts%compress_vtu, extra, sel)
          if (allocated(error)) return
          vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
          times = [times, real(istep, wp)]
          parts = [parts, 0]
          call h5%write_step(istep, name, real(istep, wp), reshape(u_out, [2, int(model%nnode)]), &
-                            s_elem, s_node, error)
+                            s_elem, s_node, error, sel)
          if (allocated(error)) return
-         call h5%write_results(istep, extra%e_elem, extra%e_node, extra%rf, set_names, set_rf, error)
+         call h5%write_results(istep, extra%e_elem, extra%e_node, extra%rf, set_names, set_rf, error, sel)
          if (allocated(error)) return
          deallocate (set_rf, set_names)
          if (contact%n > 0) then
-            ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per pair
+            ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per
+            ! pair, when a contact field is selected
             tab = contact%table(model, u_out)
-            write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
-            call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, &
-                                   reshape(u_out, [2, int(model%nnode)]), error, opts%compress_vtu)
-            if (allocated(error)) return
-            vtu_files = [vtu_files, string_t(opts%out_dir//'/'//opts%job//trim(buf))]
-            times = [times, real(istep, wp)]
-            parts = [parts, 1]
+            if (sel%contact()) then
+               write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
+               call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, &
+                                      reshape(u_out, [2, int(model%nnode)]), error, opts%compress_vtu, sel)
+               if (allocated(error)) return
+               vtu_files = [vtu_files, string_t(opts%out_dir//'/'//opts%job//trim(buf))]
+               times = [times, real(istep, wp)]
+               parts = [parts, 1]
+            end if
             do ip_ = 1, size(model%pairs)
+               if (.not. sel%contact()) exit
                write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
-               call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error)
+               call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error, sel)
                if (allocated(error)) return
                call h5%write_contact(istep, ip_, pack(tab%node_id, tab%pair == ip_), &
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
-                                     pack(tab%status, tab%pair == ip_), error)
+                                     pack(tab%status, tab%pair == ip_), error, sel)
                if (allocated(error)) return
             end do
             associate (rec => sys%records)
@@ -227,6 +236,18 @@ contains
                ' slave nodes closed, max pressure ', contact%max_pressure(), ', max penetration ', &
                contact%max_penetration()
             call log%say(trim(buf))
+         end if
+         if (has_print_requests(model, istep)) then
+            ! *NODE PRINT, *EL PRINT, *CONTACT PRINT: CalculiX's JOB.dat as a CSV table
+            write (buf, '(a,i4.4,a)') '_print_', istep, '.csv'
+            if (contact%n > 0) then
+               call write_print_csv(base//trim(buf), model, istep, reshape(u_out, [2, int(model%nnode)]), extra%rf, &
+                                    s_elem, extra%e_elem, error, tab)
+            else
+               call write_print_csv(base//trim(buf), model, istep, reshape(u_out, [2, int(model%nnode)]), extra%rf, &
+                                    s_elem, extra%e_elem, error)
+            end if
+            if (allocated(error)) return
          end if
          call write_pvd(base//'.pvd', vtu_files, times, error, parts)
          if (allocated(error)) return

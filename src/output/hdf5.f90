@@ -21,6 +21,7 @@ module vemcontact_output_hdf5
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
    use vemcontact_model, only: model_t, string_t
+   use vemcontact_output_selection, only: field_selection_t
    implicit none
    private
 
@@ -151,8 +152,9 @@ contains
    end function mesh_arrays_fit
 
    !> Write /steps/NNNN (index zero-padded to 4 digits, wider beyond 9999) with
-   !> attributes name and time and datasets U, S_element, S_node; then flush.
-   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error)
+   !> attributes name and time and datasets U, S_element, S_node (with `sel`: those
+   !> selected); then flush.
+   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error, sel)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
       character(len=*), intent(in) :: name
@@ -161,11 +163,14 @@ contains
       real(wp), intent(in) :: s_elem(:, :)   !< (4, nelem)
       real(wp), intent(in) :: s_node(:, :)   !< (4, nnode)
       type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
       integer(hid_t) :: grp
       integer :: hdferr
 
+      if (present(sel)) w = sel
       if (.not. check_open(self, 'write_step', error)) return
       if (size(u, 1) /= 2 .or. size(s_elem, 1) /= 4 .or. size(s_node, 1) /= 4 &
           .or. size(s_node, 2) /= size(u, 2) .or. self%nnode < 0 &
@@ -188,10 +193,10 @@ contains
       if (failed(self, hdferr, 'creating group '//gname, error)) return
       call put_string_attribute(self, grp, 'name', name, error)
       if (.not. allocated(error)) call put_real_attribute(self, grp, 'time', time, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'U', shape(u, hsize_t), u, error)
-      if (.not. allocated(error)) &
+      if (.not. allocated(error) .and. w%u) call put_real(self, grp, 'U', shape(u, hsize_t), u, error)
+      if (.not. allocated(error) .and. w%s) &
          call put_real(self, grp, 'S_element', shape(s_elem, hsize_t), s_elem, error)
-      if (.not. allocated(error)) &
+      if (.not. allocated(error) .and. w%s) &
          call put_real(self, grp, 'S_node', shape(s_node, hsize_t), s_node, error)
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
@@ -201,19 +206,23 @@ contains
    end subroutine h5_write_step
 
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
-   !> undeformed coordinates, COPEN, CPRESS, CSLIP and STATUS (1 closed, 0 open); then flush.
-   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error)
+   !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CNAREA
+   !> and STATUS (1 closed, 0 open); then flush.
+   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
       real(wp), intent(in) :: x(:, :), copen(:), cpress(:), cslip(:), cnarea(:)
       integer, intent(in) :: status(:)
       type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
       integer(hid_t) :: grp
       integer(ip), allocatable :: st(:)
       integer :: hdferr
+      if (present(sel)) w = sel
       if (.not. check_open(self, 'write_contact', error)) return
       call contact_group(self, istep, gname, error)
       if (allocated(error)) return
@@ -224,9 +233,12 @@ contains
       st = int(status, ip)
       call put_int(self, grp, 'node_ids', shape(node_id, hsize_t), node_id, error)
       if (.not. allocated(error)) call put_real(self, grp, 'coordinates', shape(x, hsize_t), x, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
+      if (.not. allocated(error) .and. w%copen) &
+         call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
+      if (.not. allocated(error) .and. w%cpress) &
+         call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
+      if (.not. allocated(error) .and. w%cslip) &
+         call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
       if (.not. allocated(error)) call put_real(self, grp, 'CNAREA', shape(cnarea, hsize_t), cnarea, error)
       if (.not. allocated(error)) call put_int(self, grp, 'STATUS', shape(st, hsize_t), st, error)
       call h5gclose_f(grp, hdferr)
@@ -329,18 +341,21 @@ contains
    !> Add to /steps/NNNN (after write_step): strains E_element (4, nelem) and
    !> E_node (4, nnode), reaction forces RF (2, nnode), RF_total (2) over all
    !> nodes, and RF_sets/names, RF_sets/RF (2, nsets): the totals over the
-   !> constrained node sets; then flush.
-   subroutine h5_write_results(self, istep, e_elem, e_node, rf, set_names, set_rf, error)
+   !> constrained node sets (with `sel`: E and RF as selected); then flush.
+   subroutine h5_write_results(self, istep, e_elem, e_node, rf, set_names, set_rf, error, sel)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
       real(wp), intent(in) :: e_elem(:, :), e_node(:, :), rf(:, :), set_rf(:, :)
       type(string_t), intent(in) :: set_names(:)
       type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
       integer(hid_t) :: grp, sub
       integer :: hdferr
       logical :: bad
+      if (present(sel)) w = sel
       if (.not. check_open(self, 'write_results', error)) return
       if (size(e_elem, 1) /= 4 .or. size(e_elem, 2) /= self%nelem .or. size(e_node, 1) /= 4 &
           .or. size(e_node, 2) /= self%nnode .or. size(rf, 1) /= 2 .or. size(rf, 2) /= self%nnode &
@@ -357,11 +372,13 @@ contains
       gname = '/steps/'//trim(buf)
       call h5gopen_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'opening group '//gname, error)) return
-      call put_real(self, grp, 'E_element', shape(e_elem, hsize_t), e_elem, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'E_node', shape(e_node, hsize_t), e_node, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'RF', shape(rf, hsize_t), rf, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'RF_total', [2_hsize_t], sum(rf, dim=2), error)
-      if (.not. allocated(error)) then
+      if (w%e) call put_real(self, grp, 'E_element', shape(e_elem, hsize_t), e_elem, error)
+      if (.not. allocated(error) .and. w%e) &
+         call put_real(self, grp, 'E_node', shape(e_node, hsize_t), e_node, error)
+      if (.not. allocated(error) .and. w%rf) call put_real(self, grp, 'RF', shape(rf, hsize_t), rf, error)
+      if (.not. allocated(error) .and. w%rf) &
+         call put_real(self, grp, 'RF_total', [2_hsize_t], sum(rf, dim=2), error)
+      if (.not. allocated(error) .and. w%rf) then
          call h5gcreate_f(grp, 'RF_sets', sub, hdferr)
          if (.not. failed(self, hdferr, 'creating group '//gname//'/RF_sets', error)) then
             call put_strings(self, sub, 'names', set_names, error)

@@ -22,6 +22,7 @@ module vemcontact_output_vtu
    use vemcontact_output_base64, only: base64_encode, base64_length, as_bytes
    use vemcontact_output_zlib, only: zlib_bound, zlib_compress
    use vemcontact_output_xml, only: xml_escape
+   use vemcontact_output_selection, only: field_selection_t
    implicit none
    private
 
@@ -71,8 +72,10 @@ contains
    !> Arrays are zlib-compressed unless `compress` is present and false.
    !> With `extra`: FieldData TimeValue and the names of the element sets and
    !> materials (an Int32 array "ELSET:name" or "MATERIAL:name" holding the id),
-   !> point data RF and E, cell data E, ELSET and PART.
-   subroutine write_vtu(path, model, u, s_elem, s_node, error, compress, extra)
+   !> point data RF and E, cell data E, ELSET and PART.  With `sel` only the
+   !> selected result fields (U, S with S1, S3, MISES, RF, E) are written; the
+   !> mesh and the labels (NODE_ID, ELEMENT_ID, MATERIAL, ELSET, PART) always.
+   subroutine write_vtu(path, model, u, s_elem, s_node, error, compress, extra, sel)
       character(len=*), intent(in) :: path
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:, :)        !< (2, nnode)
@@ -81,6 +84,8 @@ contains
       type(error_t), allocatable, intent(out) :: error
       logical, intent(in), optional :: compress
       type(vtu_extras_t), intent(in), optional :: extra
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=:), allocatable :: tmp, itype
       character(len=*), parameter :: s_names = ' NumberOfComponents="9"'//tensor_names
       character(len=512) :: msg
@@ -94,6 +99,7 @@ contains
 
       z = .true.
       if (present(compress)) z = compress
+      if (present(sel)) w = sel
       if (size(u, 1) /= 2 .or. size(u, 2) /= model%nnode .or. size(s_elem, 1) /= 4 &
           .or. size(s_elem, 2) /= model%nelem .or. size(s_node, 1) /= 4 &
           .or. size(s_node, 2) /= model%nnode) then
@@ -126,40 +132,47 @@ contains
                //'" NumberOfCells="'//itoa(int(model%nelem, i8))//'">'//nl, ios)
 
       ! point data
-      call put(unit, '<PointData Vectors="U">'//nl, ios)
+      if (w%u) then
+         call put(unit, '<PointData Vectors="U">'//nl, ios)
+      else
+         call put(unit, '<PointData>'//nl, ios)
+      end if
       allocate (xyz(3, model%nnode))
       xyz(1:2, :) = u
       xyz(3, :) = 0.0_wp
-      call put_array(unit, 'type="Float64" Name="U" NumberOfComponents="3"', as_bytes(xyz), ios, z)
-      call put_array(unit, 'type="Float64" Name="S"'//s_names, as_bytes(full_tensor(s_node, 1.0_wp)), ios, z)
-      allocate (p1(model%nnode), p3(model%nnode), vm(model%nnode))
-      do i = 1, model%nnode
-         call principal_stresses(s_node(:, i), p1(i), p3(i), vm(i))
-      end do
-      call put_array(unit, 'type="Float64" Name="S1"', as_bytes(p1), ios, z)
-      call put_array(unit, 'type="Float64" Name="S3"', as_bytes(p3), ios, z)
-      call put_array(unit, 'type="Float64" Name="MISES"', as_bytes(vm), ios, z)
-      deallocate (p1, p3, vm)
+      if (w%u) call put_array(unit, 'type="Float64" Name="U" NumberOfComponents="3"', as_bytes(xyz), ios, z)
+      if (w%s) then
+         call put_array(unit, 'type="Float64" Name="S"'//s_names, as_bytes(full_tensor(s_node, 1.0_wp)), ios, z)
+         allocate (p1(model%nnode), p3(model%nnode), vm(model%nnode))
+         do i = 1, model%nnode
+            call principal_stresses(s_node(:, i), p1(i), p3(i), vm(i))
+         end do
+         call put_array(unit, 'type="Float64" Name="S1"', as_bytes(p1), ios, z)
+         call put_array(unit, 'type="Float64" Name="S3"', as_bytes(p3), ios, z)
+         call put_array(unit, 'type="Float64" Name="MISES"', as_bytes(vm), ios, z)
+         deallocate (p1, p3, vm)
+      end if
       call put_array(unit, 'type="'//itype//'" Name="NODE_ID"', as_bytes(model%node_id(1:model%nnode)), ios, z)
       if (present(extra)) then
-         if (allocated(extra%rf)) then
+         if (allocated(extra%rf) .and. w%rf) then
             xyz(1:2, :) = extra%rf
             call put_array(unit, 'type="Float64" Name="RF" NumberOfComponents="3"', as_bytes(xyz), ios, z)
          end if
-         if (allocated(extra%e_node)) call put_array(unit, 'type="Float64" Name="E"'//s_names, &
+         if (allocated(extra%e_node) .and. w%e) call put_array(unit, 'type="Float64" Name="E"'//s_names, &
                                                      as_bytes(full_tensor(extra%e_node, 0.5_wp)), ios, z)
       end if
       call put(unit, '</PointData>'//nl, ios)
 
       ! cell data
       call put(unit, '<CellData>'//nl, ios)
-      call put_array(unit, 'type="Float64" Name="S"'//s_names, as_bytes(full_tensor(s_elem, 1.0_wp)), ios, z)
+      if (w%s) call put_array(unit, 'type="Float64" Name="S"'//s_names, as_bytes(full_tensor(s_elem, 1.0_wp)), &
+                              ios, z)
       allocate (ibuf(model%nelem))
       ibuf = int(model%elem_mat(1:model%nelem), ip)
       call put_array(unit, 'type="'//itype//'" Name="MATERIAL"', as_bytes(ibuf), ios, z)
       call put_array(unit, 'type="'//itype//'" Name="ELEMENT_ID"', as_bytes(model%elem_id(1:model%nelem)), ios, z)
       if (present(extra)) then
-         if (allocated(extra%e_elem)) call put_array(unit, 'type="Float64" Name="E"'//s_names, &
+         if (allocated(extra%e_elem) .and. w%e) call put_array(unit, 'type="Float64" Name="E"'//s_names, &
                                                      as_bytes(full_tensor(extra%e_elem, 0.5_wp)), ios, z)
          if (allocated(extra%elem_set)) &
             call put_array(unit, 'type="'//itype//'" Name="ELSET"', as_bytes(extra%elem_set), ios, z)
