@@ -4,6 +4,9 @@
 A deck without requests writes every field.  *NODE PRINT / *EL PRINT / *CONTACT PRINT
 go to JOB_print_NNNN.csv, with the set totals TOTALS=YES|ONLY asks for."""
 import csv
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import h5py
@@ -14,6 +17,7 @@ import pytest
 from test_outputs import grid, nset, run
 
 ROOT = Path(__file__).resolve().parents[2]
+ENV = dict(os.environ, PYTHONPATH=str(ROOT / "postprocess"))
 
 NX, NY, F = 8, 4, 250.0
 LABELS_POINT = {"NODE_ID"}
@@ -180,3 +184,35 @@ def test_contact_requests(exe, tmp_path):
         assert not any(k.startswith("pair_") for k in f["steps/0001"].get("contact", {}))
     assert "c_contact_" not in (d / "c.pvd").read_text()
 
+
+def run_plot(*args):
+    return subprocess.run([sys.executable, "-m", "vctools.plot", *args], capture_output=True, text=True, env=ENV)
+
+
+def test_plot_says_which_field_is_missing(runs, tmp_path):
+    """vc-plot draws what a step has and names what its requests left out."""
+    d = runs["req"]
+    r = run_plot(str(d / "p.pvd"), "--step", "1", "-o", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    assert "no S1, S3, MISES" in r.stderr and "output requests" in r.stderr
+    assert sorted(os.listdir(tmp_path)) == ["p_0001_U_x.png", "p_0001_U_y.png"]
+    r = run_plot(str(d / "p.pvd"), "--step", "1", "--field", "MISES", "-o", str(tmp_path))
+    assert r.returncode == 1 and "Traceback" not in r.stderr
+    assert "no point field MISES" in r.stderr and "S under *EL FILE" in r.stderr
+    r = run_plot(str(d / "p.pvd"), "--step", "3", "--deformed", "auto", "-o", str(tmp_path))
+    assert r.returncode == 1 and "--deformed needs U" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_compare_names_fields_left_out(runs):
+    """vc-compare on filtered results: a field in neither file is a note, not a
+    failure; one in the reference only is a mismatch that names it."""
+    def compare(*args):
+        return subprocess.run([sys.executable, "-m", "vctools.compare", *args], capture_output=True, text=True,
+                              env=ENV)
+    req, full = str(runs["req"] / "p.h5"), str(runs["all"] / "p.h5")
+    r = compare(req, req)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "note: step 1: S_element not compared: in neither file (the deck's output requests do not select it)" \
+        in r.stdout
+    r = compare(req, full)
+    assert r.returncode == 1 and "step 1: S_node missing in the result" in r.stdout

@@ -18,6 +18,10 @@ values beyond it.
 When the displacements are zero (a geostatic step) the default is S1, S3, MISES,
 S:yy; a field that is the same everywhere is drawn in one colour with its value in
 the title, without a colour bar.
+A deck with output requests writes only the fields they select: the default
+pictures are then those of the step's fields, with a note naming the ones left out,
+and a field (or --deformed, which needs U) the step lacks is an error naming the
+request to add.
 """
 from __future__ import annotations
 
@@ -59,6 +63,9 @@ def main(argv=None) -> int:
         res = read_vtu(vtu)
         deformed = None
         if a.deformed is not None:
+            if "U" not in res.point_data:
+                raise ResultError(f"{vtu}: --deformed needs U, which the deck's output requests do not select "
+                                  f"(add U under *NODE FILE)")
             deformed = "auto" if a.deformed == "auto" else float(a.deformed)
         cfile = contact_file(a.result, vtu)
         contact = read_contact_points(cfile) if cfile and os.path.exists(cfile) else None
@@ -88,12 +95,22 @@ def main(argv=None) -> int:
         fields = a.field
         if not fields:
             fields = ["U:x", "U:y", "S1", "S3", "MISES"]
-            if not np.asarray(res.point_data["U"]).any():
+            if "U" in res.point_data and not np.asarray(res.point_data["U"]).any():
                 # a geostatic step reports zero displacements by construction: its
                 # picture is the stress state
                 fields = ["S1", "S3", "MISES", "S:yy"]
                 print(f"vc-plot: note: {vtu}: displacements are zero (a geostatic step): drawing stresses only",
                       file=sys.stderr)
+            # a deck with output requests writes only the fields they select
+            have = [f for f in fields if f.split(":")[0] in res.point_data]
+            if len(have) < len(fields):
+                left = list(dict.fromkeys(f.split(":")[0] for f in fields if f not in have))
+                print(f"vc-plot: note: {vtu}: no {', '.join(left)} (not selected by the deck's output requests)",
+                      file=sys.stderr)
+            fields = have or [f for f in ("RF:x", "RF:y", "E:xx", "E:yy") if f.split(":")[0] in res.point_data]
+            if not fields:
+                raise ResultError(f"{vtu}: no result field to draw: the deck's output requests select none "
+                                  f"(*NODE FILE U, *EL FILE S)")
         for f in fields:
             out = os.path.join(outdir, f"{job}_{f.replace(':', '_')}.{a.format}")
             units = a.units.split(",")

@@ -101,8 +101,10 @@ def read_vtu(path: str) -> PolyResult:
         cell_data[name] = np.concatenate([np.asarray(a) for a in arrays])
     # meshio splits polygons into blocks by vertex count; cells keep the file's
     # order within each block, so reorder by ELEMENT_ID position when present
-    if "ELEMENT_ID" not in cell_data or "U" not in mesh.point_data:
-        raise ResultError(f"{path}: lacks ELEMENT_ID/U: not written by vemcontact")
+    # the labels are always written; the result fields only when the deck's output
+    # requests select them (docs/output-format.md)
+    if "ELEMENT_ID" not in cell_data or "NODE_ID" not in mesh.point_data:
+        raise ResultError(f"{path}: lacks ELEMENT_ID/NODE_ID: not written by vemcontact")
     return PolyResult(points=np.asarray(mesh.points)[:, :2], polygons=polygons,
                       point_data=dict(mesh.point_data), cell_data=cell_data, path=path)
 
@@ -110,6 +112,10 @@ def read_vtu(path: str) -> PolyResult:
 # the .vtu's tensors have 9 components, row by row (docs/output-format.md)
 TENSOR = ["xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"]
 COMPONENTS = {"U": ["x", "y", "z"], "RF": ["x", "y", "z"], "S": TENSOR, "E": TENSOR}
+# the output request that writes a field (a deck with requests writes only what they select)
+REQUEST = {"U": "U under *NODE FILE", "RF": "RF under *NODE FILE", "S": "S under *EL FILE",
+           "S1": "S under *EL FILE", "S3": "S under *EL FILE", "MISES": "S under *EL FILE",
+           "E": "E under *EL FILE"}
 
 
 def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
@@ -123,7 +129,8 @@ def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
     data = res.point_data if where == "point" else res.cell_data
     if name not in data:
         have = ", ".join(sorted(data))
-        raise ResultError(f"{res.path}: no {where} field {name} (it has {have})")
+        hint = f"; the deck's output requests do not select it (add {REQUEST[name]})" if name in REQUEST else ""
+        raise ResultError(f"{res.path}: no {where} field {name} (it has {have}{hint})")
     v = np.asarray(data[name], dtype=float)
     if v.ndim == 1:
         if comp:
