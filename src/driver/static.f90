@@ -152,7 +152,7 @@ contains
          u_out = u - u_ref
 
          t0 = wall_time()
-         call element_stresses(model, u, s_elem)
+         call element_stresses(model, u, s_elem, st%dload)
          call nodal_average(model, s_elem, s_node)
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)

@@ -1,10 +1,11 @@
 !> VTK XML UnstructuredGrid (.vtu) writer: version 1.0, UInt64 block headers,
 !> inline base64 "binary" arrays, so every double is stored exactly.
 !>
-!> Every element is written as VTK_POLYGON (7), triangles and quads included:
-!> one cell type keeps the file uniform (VEM meshes mix polygons of any size
-!> with FEM cells), the element's own kind is in `/mesh/element_type` of the
-!> HDF5 file, and linear triangles and quads render identically as polygons.
+!> Every first-order element is written as VTK_POLYGON (7), triangles and
+!> quads included: one cell type keeps the file uniform (VEM meshes mix
+!> polygons of any size with FEM cells), the element's own kind is in
+!> `/mesh/element_type` of the HDF5 file, and linear triangles and quads render
+!> identically as polygons.  Second-order elements: see second_order_cells.
 !>
 !> The file is written with stream access as raw bytes (XML text and base64
 !> payloads), never a formatted write per number, to `path//'.tmp'`, and renamed
@@ -15,7 +16,7 @@ module vemcontact_output_vtu
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
-   use vemcontact_model, only: model_t
+   use vemcontact_model, only: model_t, etype_polygon2, etype_quad8, etype_tri6
    use vemcontact_post_stress, only: principal_stresses
    use vemcontact_output_base64, only: base64_encode, base64_length, as_bytes
    implicit none
@@ -23,8 +24,10 @@ module vemcontact_output_vtu
 
    public :: write_vtu, replace_file, put, put_array, byte_order, int_type_name, itoa
 
-   !> VTK cell type of every element.
+   !> VTK cell type of every first-order element and of the second-order polygons.
    integer, parameter :: vtk_polygon = 7
+   !> VTK cell types of the quadratic FEM elements (same node order as Abaqus')
+   integer, parameter :: vtk_quadratic_triangle = 22, vtk_quadratic_quad = 23
    !> Bytes encoded per piece: a multiple of 3 so that pieces join without padding;
    !> 3 MiB keeps the encoded buffer (4 MiB) in cache-friendly range.
    integer(i8), parameter :: piece_bytes = 3_i8*1048576_i8
@@ -38,6 +41,39 @@ module vemcontact_output_vtu
    end interface
 
 contains
+
+   !> Connectivity (1-based, as the model's) and VTK cell type of every element.
+   !> First-order elements: VTK_POLYGON through their nodes.  Second order: the
+   !> 6-node triangle and the 8-node quad as VTK_QUADRATIC_TRIANGLE (22) and
+   !> VTK_QUADRATIC_QUAD (23), whose node order is Abaqus' (corners, then side
+   !> nodes); a second-order polygon as a VTK_POLYGON through all its 2n nodes
+   !> in boundary order (corner 1, side node 1, corner 2, ...), so that the
+   !> side nodes are kept and readers without quadratic polygons draw it.
+   subroutine second_order_cells(model, conn, types)
+      type(model_t), intent(in) :: model
+      integer(ip), allocatable, intent(out) :: conn(:)
+      character(len=:), allocatable, intent(out) :: types
+      integer :: e, n, i
+      integer(ip) :: p0
+      conn = model%elem_conn(1:model%elem_ptr(model%nelem + 1) - 1)
+      types = repeat(achar(vtk_polygon), model%nelem)
+      if (.not. allocated(model%elem_type)) return
+      do e = 1, model%nelem
+         select case (model%elem_type(e))
+         case (etype_tri6)
+            types(e:e) = achar(vtk_quadratic_triangle)
+         case (etype_quad8)
+            types(e:e) = achar(vtk_quadratic_quad)
+         case (etype_polygon2)
+            p0 = model%elem_ptr(e)
+            n = (model%elem_ptr(e + 1) - p0)/2
+            do i = 1, n
+               conn(p0 + 2*i - 2) = model%elem_conn(p0 + i - 1)
+               conn(p0 + 2*i - 1) = model%elem_conn(p0 + n + i - 1)
+            end do
+         end select
+      end do
+   end subroutine second_order_cells
 
    !> Write the mesh with displacements and stresses to the .vtu file `path`.
    !> Point data: U (3 comps, z = 0), S (xx,yy,zz,xy averaged at nodes), S1, S3,
@@ -121,11 +157,10 @@ contains
 
       ! topology: 0-based connectivity, offsets = end of each cell (VTK XML convention)
       call put(unit, '<Cells>'//nl, ios)
-      call put_array(unit, 'type="'//itype//'" Name="connectivity"', &
-                     as_bytes(model%elem_conn(1:model%elem_ptr(model%nelem + 1) - 1) - 1_ip), ios)
+      call second_order_cells(model, ibuf, types)
+      call put_array(unit, 'type="'//itype//'" Name="connectivity"', as_bytes(ibuf - 1_ip), ios)
       ibuf = model%elem_ptr(2:model%nelem + 1) - 1_ip
       call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios)
-      types = repeat(achar(vtk_polygon), model%nelem)
       call put_array(unit, 'type="UInt8" Name="types"', types, ios)
       call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
 

@@ -7,7 +7,7 @@ module vemcontact_test_second_order
    implicit none
    private
 
-   public :: add_side_nodes
+   public :: add_side_nodes, boundary_mask2, split_quads
 
 contains
 
@@ -56,4 +56,49 @@ contains
       x2(:, 1:nnode) = x
       x2(:, nnode + 1:) = xm(:, 1:nside)
    end subroutine add_side_nodes
+
+   !> Nodes on the mesh boundary of a second-order mesh: the side nodes used by
+   !> one element only, and the corners of their sides.
+   function boundary_mask2(nnode, ptr, conn) result(on)
+      integer, intent(in) :: nnode
+      integer(ip), intent(in) :: ptr(:), conn(:)
+      logical, allocatable :: on(:)
+      integer, allocatable :: cnt(:)
+      integer :: e, n, i, j
+      allocate (on(nnode), source=.false.)
+      allocate (cnt(nnode), source=0)
+      do e = 1, size(ptr) - 1
+         n = (ptr(e + 1) - ptr(e))/2
+         do i = 1, n
+            j = conn(ptr(e) + n + i - 1)
+            cnt(j) = cnt(j) + 1
+         end do
+      end do
+      do e = 1, size(ptr) - 1
+         n = (ptr(e + 1) - ptr(e))/2
+         do i = 1, n
+            j = conn(ptr(e) + n + i - 1)
+            if (cnt(j) == 1) then
+               on(j) = .true.
+               on(conn(ptr(e) + i - 1)) = .true.
+               on(conn(ptr(e) + mod(i, n))) = .true.
+            end if
+         end do
+      end do
+   end function boundary_mask2
+
+   !> Every quad (a, b, c, d) of a first-order mesh as the triangles (a, b, c) and (a, c, d).
+   subroutine split_quads(ptr, conn, ptr2, conn2)
+      integer(ip), intent(in) :: ptr(:), conn(:)
+      integer(ip), allocatable, intent(out) :: ptr2(:), conn2(:)
+      integer :: e, ne
+      ne = size(ptr) - 1
+      allocate (ptr2(2*ne + 1), conn2(6*ne))
+      ptr2 = [(int(3*e + 1, ip), e=0, 2*ne)]
+      do e = 1, ne
+         associate (q => conn(ptr(e):ptr(e) + 3))
+            conn2(6*e - 5:6*e) = [q(1), q(2), q(3), q(1), q(3), q(4)]
+         end associate
+      end do
+   end subroutine split_quads
 end module vemcontact_test_second_order
