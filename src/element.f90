@@ -92,14 +92,19 @@ contains
    !> element's body force `body` (per unit volume; default zero); FEM quads
    !> and quadratic FEM: mean of the Gauss-point stresses; CST: its constant
    !> stress.  Elements that element_stiffness rejects give zero.
-   pure subroutine element_stress(form, xy, d, ue, work, sig, order, thick, tau, body)
+   !> `signode(3, n)` (optional): the element's stress at each of its nodes:
+   !> the k = 2 virtual element's projected (linear) stress there, the element
+   !> stress above for every other element.
+   pure subroutine element_stress(form, xy, d, ue, work, sig, order, thick, tau, body, signode)
       integer, intent(in) :: form
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
       real(wp), intent(inout) :: work(:)
       real(wp), intent(out) :: sig(3)
       integer, intent(in), optional :: order
       real(wp), intent(in), optional :: thick, tau, body(2)
+      real(wp), intent(out), optional :: signode(:, :)
       real(wp) :: t
+      integer :: i
       sig = 0.0_wp
       if (second(order)) then
          if (form == form_fem) then
@@ -112,7 +117,8 @@ contains
          else
             t = 1.0_wp
             if (present(thick)) t = thick
-            call vem2_stress(xy, d, t, ue, work, sig, body, tau)
+            call vem2_stress(xy, d, t, ue, work, sig, body, tau, signode)
+            return
          end if
       else if (form == form_fem) then
          select case (size(xy, 2))
@@ -123,6 +129,11 @@ contains
          end select
       else
          call vem_stress(xy, d, ue, work, sig)
+      end if
+      if (present(signode)) then
+         do i = 1, size(xy, 2)
+            signode(:, i) = sig
+         end do
       end if
    end subroutine element_stress
 

@@ -182,6 +182,12 @@ E, GRAV, 0.01, 0.0, -1.0
     assert np.abs(u[:, 0]).max() <= 1e-10 * np.abs(uy).max()
     # element mean stress: syy at the centroid height 0.5
     assert s[:, 1] == pytest.approx([-0.005, -0.005], rel=1e-10)
+    # nodal stress: the elements' own (linear) stresses at the nodes, averaged:
+    # exact at every node, side nodes included
+    with h5py.File(tmp_path / "g.h5") as f:
+        sn = np.array(f["steps/0001/S_node"])
+    assert np.abs(sn[:, 1] - 0.01 * (x[:, 1] - 1)).max() <= 1e-10 * 0.01
+    assert np.abs(sn[:, [0, 3]]).max() <= 1e-10 * 0.01
 
 
 @pytest.mark.parametrize("text,msg", [

@@ -274,17 +274,20 @@ contains
    !> `dloads` (optional): the distributed loads the displacements were solved
    !> with; the k = 2 virtual element recovers its condensed cell moments from
    !> the body force among them.
-   subroutine element_stresses(model, u, s_elem, dloads)
+   !> `s_at` (optional, (4, size of elem_conn)): each element's stress at each
+   !> of its nodes (element_stress's signode), for nodal_average.
+   subroutine element_stresses(model, u, s_elem, dloads, s_at)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:)
       real(wp), intent(out) :: s_elem(:, :)
       type(dload_t), intent(in), optional :: dloads(:)
-      real(wp), allocatable :: xy(:, :), ue(:), work(:), body(:, :)
+      real(wp), intent(out), optional :: s_at(:, :)
+      real(wp), allocatable :: xy(:, :), ue(:), work(:), body(:, :), sn(:, :)
       real(wp) :: d(3, 3), sig(3)
       integer :: e, n, i, nmax, k
       integer(ip) :: first, node
       nmax = max_element_nodes(model)
-      allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)))
+      allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)), sn(3, nmax))
       allocate (body(2, model%nelem), source=0.0_wp)
       if (present(dloads)) then
          do k = 1, size(dloads)
@@ -304,8 +307,16 @@ contains
          associate (mat => model%materials(model%elem_mat(e)))
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
             call element_stress(model%elem_form(e), xy(:, :n), d, ue(:2*n), work, sig, &
-                                element_order(model%elem_type(e)), model%elem_thick(e), stab(model, e), body(:, e))
+                                element_order(model%elem_type(e)), model%elem_thick(e), stab(model, e), body(:, e), &
+                                sn(:, :n))
             s_elem(:, e) = [sig(1), sig(2), out_of_plane_stress(mat%poisson, model%elem_plane(e), sig(1), sig(2)), sig(3)]
+            if (present(s_at)) then
+               do i = 1, n
+                  s_at(:, first + i - 1) = [sn(1, i), sn(2, i), &
+                                            out_of_plane_stress(mat%poisson, model%elem_plane(e), sn(1, i), sn(2, i)), &
+                                            sn(3, i)]
+               end do
+            end if
          end associate
       end do
    end subroutine element_stresses

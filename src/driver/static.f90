@@ -5,6 +5,7 @@ module vemcontact_driver_static
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t
    use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic, &
+                               element_order, etype_polygon2, &
                                pair_surface_to_surface
    use vemcontact_sparse_mmio, only: write_matrix_market
    use vemcontact_driver_linear, only: linear_system_t
@@ -48,7 +49,8 @@ contains
       integer, allocatable :: parts(:)
       integer :: ip_
       type(h5_writer_t) :: h5
-      real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:)
+      real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:), s_at(:, :)
+      integer :: ie
       type(string_t), allocatable :: vtu_files(:), warnings(:)
       real(wp) :: t0
       integer :: istep, iw
@@ -72,9 +74,10 @@ contains
       write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'nodes ', model%nnode, ', elements ', model%nelem, &
          ', unknowns ', 2*model%nnode, ', steps ', size(model%steps)
       call log%say(trim(buf))
-      write (buf, '(2x,a,i0,a,i0,a,i0)') 'VEM elements ', count(model%elem_form == form_vem), &
+      write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'VEM elements ', count(model%elem_form == form_vem), &
          ', FEM elements ', count(model%elem_form == form_fem), ', of them polygons (VPE/VPS) ', &
-         count(model%elem_type == etype_polygon)
+         count(model%elem_type == etype_polygon), ', second-order polygons (VPE2/VPS2) ', &
+         count(model%elem_type == etype_polygon2)
       call log%say(trim(buf))
 
       if (contact%n > 0) then
@@ -120,6 +123,8 @@ contains
 
       call init_load_state(model, st)
       allocate (u(2*model%nnode), s_elem(4, model%nelem), s_node(4, model%nnode))
+      if (any([(element_order(model%elem_type(ie)) == 2, ie=1, int(model%nelem))])) &
+         allocate (s_at(4, model%elem_ptr(model%nelem + 1) - 1))
       ! displacements are reported relative to the end of a geostatic step
       allocate (u_ref(2*model%nnode), source=0.0_wp)
       allocate (vtu_files(0), times(0), parts(0))
@@ -152,8 +157,15 @@ contains
          u_out = u - u_ref
 
          t0 = wall_time()
-         call element_stresses(model, u, s_elem, st%dload)
-         call nodal_average(model, s_elem, s_node)
+         ! second-order elements give their own stress at each node (linear for
+         ! the k = 2 VEM), averaged at the nodes instead of the element values
+         if (allocated(s_at)) then
+            call element_stresses(model, u, s_elem, st%dload, s_at)
+            call nodal_average(model, s_elem, s_node, s_at)
+         else
+            call element_stresses(model, u, s_elem, st%dload)
+            call nodal_average(model, s_elem, s_node)
+         end if
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)
          call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
