@@ -11,6 +11,10 @@ from .errors import MeshError
 from .mesh import Mesh
 
 CELL_TYPES = {2: 3, 3: 4}          # gmsh type -> nodes (3-node triangle, 4-node quad)
+# second-order cells: gmsh type -> corners (6-node triangle, 8-node quad); gmsh lists the
+# corners, then the side nodes in side order, as Abaqus does
+CELL_TYPES2 = {9: 3, 16: 4}
+LINE_TYPES = {1, 8}                 # 2- and 3-node lines (end, end[, middle])
 OTHER_TYPES = {1: 2, 15: 1}        # 2-node line, 1-node point
 
 
@@ -74,6 +78,7 @@ def read_msh(path, etype="VPE", default_body="BODY"):
     xy = np.asarray(xyz, float).reshape(-1, 2)
     index = {t: i for i, t in enumerate(tags)}
     cells, cell_ent, lines_, line_ent, points, point_ent = [], [], [], [], [], []
+    cell_sides = []
     it = iter(sec.get("Elements") or [])
     try:
         nblocks = int(next(it)[1].split()[0])
@@ -87,8 +92,14 @@ def read_msh(path, etype="VPE", default_body="BODY"):
             v = [index[int(s)] for s in t.split()[1:]]
             if typ in CELL_TYPES:
                 cells.append(v)
+                cell_sides.append(None)
                 cell_ent.append(etag)
-            elif typ == 1:
+            elif typ in CELL_TYPES2:
+                nc = CELL_TYPES2[typ]
+                cells.append(v[:nc])
+                cell_sides.append(v[nc:2 * nc])
+                cell_ent.append(etag)
+            elif typ in LINE_TYPES:
                 lines_.append(v)
                 line_ent.append(etag)
             elif typ == 15:
@@ -96,7 +107,7 @@ def read_msh(path, etype="VPE", default_body="BODY"):
                 point_ent.append(etag)
             else:
                 raise MeshError(f"{path}:{ln}: element type {typ} is not supported "
-                                f"(3-node triangles, 4-node quads, lines and points are)")
+                                f"(3- and 6-node triangles, 4- and 8-node quads, lines and points are)")
     if not cells:
         raise MeshError(f"{path}: no triangles or quads")
     # bodies: first physical surface of each cell's entity
@@ -111,10 +122,20 @@ def read_msh(path, etype="VPE", default_body="BODY"):
     ptr = np.concatenate([[0], np.cumsum([len(c) for c in cells])]).astype(np.int64)
     m = Mesh(xy, ptr, conn.astype(np.int64), np.array([body_of_ent[e] for e in cell_ent]),
              [(b, etype) for b in bodies])
-    # counter-clockwise cells
+    second = [sd is not None for sd in cell_sides]
+    if any(second) and not all(second):
+        raise MeshError(f"{path}: mixes first- and second-order cells; give one order")
+    if all(second):
+        m.side_nodes = np.concatenate([np.asarray(sd) for sd in cell_sides]).astype(np.int64)
+    # counter-clockwise cells; reversed corners c_(n-1) .. c_0 have as side j the
+    # original side n-2-j (mod n)
     area = m.cell_areas()
     for c in np.flatnonzero(area < 0):
         m.conn[m.ptr[c]:m.ptr[c + 1]] = m.conn[m.ptr[c]:m.ptr[c + 1]][::-1].copy()
+        if m.side_nodes is not None:
+            n = m.ptr[c + 1] - m.ptr[c]
+            sd = m.side_nodes[m.ptr[c]:m.ptr[c + 1]].copy()
+            m.side_nodes[m.ptr[c]:m.ptr[c + 1]] = sd[(n - 2 - np.arange(n)) % n]
     # extra element sets: further physical surfaces
     for e in set(cell_ent):
         for p in phys.get((2, e), [])[1:]:
@@ -131,8 +152,9 @@ def read_msh(path, etype="VPE", default_body="BODY"):
         for p in phys.get((1, e), []):
             groups.setdefault(names.get((1, p), f"PHYS{p}"), []).append(v)
     for nm, segs in groups.items():
-        nodes = np.unique(np.asarray(segs).ravel())
-        es = [key[(min(u, w), max(u, w))] for u, w in segs if (min(u, w), max(u, w)) in key]
+        nodes = np.unique(np.concatenate([np.asarray(sg) for sg in segs]))
+        es = [key[(min(sg[0], sg[1]), max(sg[0], sg[1]))] for sg in segs
+              if (min(sg[0], sg[1]), max(sg[0], sg[1])) in key]
         m.nsets[nm] = nodes
         if es:
             es = np.asarray(es)
@@ -145,10 +167,14 @@ def read_msh(path, etype="VPE", default_body="BODY"):
     # drop nodes used by nothing (gmsh keeps geometry points)
     used = np.zeros(len(m.nodes), bool)
     used[m.conn] = True
+    if m.side_nodes is not None:
+        used[m.side_nodes] = True
     for v in m.nsets.values():
         used[v] = True
     new = np.cumsum(used) - 1
     m.nodes = m.nodes[used]
     m.conn = new[m.conn]
+    if m.side_nodes is not None:
+        m.side_nodes = new[m.side_nodes]
     m.nsets = {k: new[v] for k, v in m.nsets.items()}
     return m
