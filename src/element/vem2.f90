@@ -67,7 +67,7 @@ contains
       integer :: nw, ns, nd
       ns = max(nnode, 1) + 1
       nd = 2*ns
-      nw = nd*nd + 18*nd + ns*ns + 7*ns
+      nw = nd*nd + 19*nd + ns*ns + 7*ns
    end function vem2_workspace_size
 
    !> Condensed stiffness ke(4n, 4n) of the node dofs, order (u1x, u1y, ...).
@@ -146,10 +146,10 @@ contains
    ! ------------------------------------------------------------------ internals
 
    !> Work layout for nn nodes (ns = nn+1 scalar dofs, nd = 2 ns dofs):
-   !> K(nd,nd) | B(3,nd,3) | W(3,nd,3) | I-Pi(ns,ns) | Pi*(6,ns) | s(ns).
-   pure subroutine offsets(nn, ok, ob, ow, op, oq, os)
+   !> K(nd,nd) | B(3,nd,3) | W(3,nd,3) | I-Pi(ns,ns) | Pi*(6,ns) | s(ns) | diag(nd).
+   pure subroutine offsets(nn, ok, ob, ow, op, oq, os, od)
       integer, intent(in) :: nn
-      integer, intent(out) :: ok, ob, ow, op, oq, os
+      integer, intent(out) :: ok, ob, ow, op, oq, os, od
       integer :: ns, nd
       ns = nn + 1
       nd = 2*ns
@@ -159,6 +159,7 @@ contains
       op = ow + 9*nd
       oq = op + ns*ns
       os = oq + 6*ns
+      od = os + ns
    end subroutine offsets
 
    !> Full (uncondensed) stiffness into work(1:nd*nd), the strain operator B
@@ -169,7 +170,7 @@ contains
       integer, intent(in) :: nn
       integer, intent(out) :: info
       real(wp), intent(out) :: area
-      integer :: n, i, ip1, ok, ob, ow, op, oq, os, ns, nd
+      integer :: n, i, ip1, ok, ob, ow, op, oq, os, od, ns, nd
       real(wp) :: side(2), off(2)
       info = 0
       area = 0.0_wp
@@ -194,10 +195,10 @@ contains
       end do
       ns = nn + 1
       nd = 2*ns
-      call offsets(nn, ok, ob, ow, op, oq, os)
+      call offsets(nn, ok, ob, ow, op, oq, os, od)
       call build(xy(:, 1:n), n, ns, nd, area, d, thick, ts, work(ok:ok + nd*nd - 1), &
                  work(ob:ob + 9*nd - 1), work(ow:ow + 9*nd - 1), work(op:op + ns*ns - 1), &
-                 work(oq:oq + 6*ns - 1), work(os:os + ns - 1), info)
+                 work(oq:oq + 6*ns - 1), work(os:os + ns - 1), work(od:od + nd - 1), info)
    end subroutine full_stiffness
 
    !> Geometry of the polygon: centroid xc, size h (largest corner distance
@@ -254,15 +255,15 @@ contains
       g(:, 3) = [mono(3), mono(5), mono(6)]
    end function mass_p1
 
-   pure subroutine build(cxy, n, ns, nd, area, d, thick, ts, kf, bm, wm, pm, pst, sv, info)
+   pure subroutine build(cxy, n, ns, nd, area, d, thick, ts, kf, bm, wm, pm, pst, sv, dia, info)
       real(wp), intent(in) :: cxy(:, :)
       integer, intent(in) :: n, ns, nd
       real(wp), intent(in) :: area, d(3, 3), thick, ts
-      real(wp), intent(out) :: kf(nd, nd), bm(3, nd, 3), wm(3, nd, 3), pm(ns, ns), pst(6, ns), sv(ns)
+      real(wp), intent(out) :: kf(nd, nd), bm(3, nd, 3), wm(3, nd, 3), pm(ns, ns), pst(6, ns), sv(ns), dia(nd)
       integer, intent(out) :: info
       real(wp) :: xc(2), h, mono(6), g1(3, 3), g1c(3, 3), g1i(3, 3), g2(6, 6), dcap(3, 3), excess
       real(wp) :: pa(2), pb(2), pc(2), nrm(2), ma(6), mb(6), mc(6), ga(2), gb(2), gc(2)
-      real(wp) :: tr, floor_s, c(3), acc, dia(nd)
+      real(wp) :: tr, floor_s, c(3), acc
       integer :: i, j, a, k, l, ia, ib, ic, al, be
       logical :: ok
       info = 0
@@ -494,12 +495,12 @@ contains
       integer, intent(in) :: nn
       real(wp), intent(out) :: sig(3)
       real(wp), intent(out), optional :: signode(:, :)
-      integer :: ok, ob, ow, op, oq, os, nd, n, j, info
+      integer :: ok, ob, ow, op, oq, os, od, nd, n, j, info
       real(wp) :: kmi(2, 2), mu(2), xc(2), h, mono(6), m(6)
       real(wp) :: coef(3, 3)
       nd = 2*nn + 2
       n = nn/2
-      call offsets(nn, ok, ob, ow, op, oq, os)
+      call offsets(nn, ok, ob, ow, op, oq, os, od)
       call moments(work(ok:ok + nd*nd - 1), nn, ue, fm, mu, kmi, info)
       if (info /= 0) return
       call geometry(xy(:, 1:n), n, xc, h, mono)
@@ -546,8 +547,8 @@ contains
       integer, intent(in) :: n, nrhs
       real(wp), intent(inout) :: a(n, n), b(n, nrhs)
       logical, intent(out) :: ok
-      real(wp) :: f, rowa(n), rowb(nrhs)
-      integer :: i, k, p
+      real(wp) :: f, tmp
+      integer :: i, j, k, p
       ok = .true.
       do k = 1, n
          p = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
@@ -556,8 +557,12 @@ contains
             return
          end if
          if (p /= k) then
-            rowa = a(k, :); a(k, :) = a(p, :); a(p, :) = rowa
-            rowb = b(k, :); b(k, :) = b(p, :); b(p, :) = rowb
+            do j = 1, n
+               tmp = a(k, j); a(k, j) = a(p, j); a(p, j) = tmp
+            end do
+            do j = 1, nrhs
+               tmp = b(k, j); b(k, j) = b(p, j); b(p, j) = tmp
+            end do
          end if
          do i = k + 1, n
             f = a(i, k)/a(k, k)
@@ -566,7 +571,10 @@ contains
          end do
       end do
       do k = n, 1, -1
-         b(k, :) = (b(k, :) - matmul(a(k, k + 1:n), b(k + 1:n, :)))/a(k, k)
+         do i = k + 1, n
+            b(k, :) = b(k, :) - a(k, i)*b(i, :)
+         end do
+         b(k, :) = b(k, :)/a(k, k)
       end do
    end subroutine solve_dense
 end module vemcontact_element_vem2
