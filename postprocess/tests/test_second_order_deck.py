@@ -80,6 +80,25 @@ def test_vpe2_example1_exact_and_vtu(exe, tmp_path):
     assert conn[1].tolist() == [1, 10, 2, 11, 3, 12, 4, 7]
 
 
+def tip_of(tmp_path, job):
+    with h5py.File(tmp_path / f"{job}.h5") as f:
+        u = np.array(f["steps/0001/U"])
+        ids = list(np.array(f["mesh/node_ids"]))
+    return 0.5 * (u[ids.index(3), 1] + u[ids.index(4), 1])
+
+
+def test_formulation_switch(exe, tmp_path):
+    """FORMULATION=VEM on CPE8 runs the k = 2 VEM (exact here), FORMULATION=FEM on an
+    8-node VPE2 the 8-node quad (the CPE8 answer, below exact on the skewed mesh)."""
+    sec = "*SOLID SECTION, ELSET=BEAM, MATERIAL=M"
+    assert run(exe, tmp_path, deck("CPE8").replace(sec, sec + ", FORMULATION=VEM"), "q8v").returncode == 0
+    assert tip_of(tmp_path, "q8v") == pytest.approx(0.3, rel=1e-8)
+    assert run(exe, tmp_path, deck("VPE2").replace(sec, sec + ", FORMULATION=FEM"), "v2f").returncode == 0
+    assert run(exe, tmp_path, deck("CPE8"), "q8").returncode == 0
+    assert tip_of(tmp_path, "v2f") == pytest.approx(tip_of(tmp_path, "q8"), rel=1e-12)
+    assert tip_of(tmp_path, "q8") < 0.99 * 0.3
+
+
 def test_cpe8_cpe6_cells(exe, tmp_path):
     r = run(exe, tmp_path, deck("CPE8"), "q8")
     assert r.returncode == 0, r.stderr
