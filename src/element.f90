@@ -93,8 +93,9 @@ contains
    !> and quadratic FEM: mean of the Gauss-point stresses; CST: its constant
    !> stress.  Elements that element_stiffness rejects give zero.
    !> `signode(3, n)` (optional): the element's stress at each of its nodes:
-   !> the k = 2 virtual element's projected (linear) stress there, the element
-   !> stress above for every other element.
+   !> the k = 2 virtual element's projected (linear) stress there, the 6- and
+   !> 8-node FEM stress evaluated at the node, the element stress above for
+   !> every first-order element.
    pure subroutine element_stress(form, xy, d, ue, work, sig, order, thick, tau, body, signode)
       integer, intent(in) :: form
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
@@ -110,9 +111,11 @@ contains
          if (form == form_fem) then
             select case (size(xy, 2))
             case (6)
-               call tri6_stress(xy, d, ue, sig)
+               call tri6_stress(xy, d, ue, sig, signode)
+               return
             case (8)
-               call quad8_stress(xy, d, ue, sig)
+               call quad8_stress(xy, d, ue, sig, signode)
+               return
             end select
          else
             t = 1.0_wp

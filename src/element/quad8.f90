@@ -54,10 +54,13 @@ contains
    end subroutine quad8_stiffness
 
    !> Mean stress (sxx, syy, sxy) over the element (3 x 3 Gauss); zero for an
-   !> element quad8_stiffness rejects.
-   pure subroutine quad8_stress(xy, d, ue, sig)
+   !> element quad8_stiffness rejects.  `signode(3, 8)` (optional): the stress
+   !> evaluated at each node (its natural coordinates), the mean where the
+   !> Jacobian is not positive there.
+   pure subroutine quad8_stress(xy, d, ue, sig, signode)
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
       real(wp), intent(out) :: sig(3)
+      real(wp), intent(out), optional :: signode(:, :)
       real(wp) :: b(3, 16), detj, nsh(8), area
       integer :: g, h
       sig = 0.0_wp
@@ -67,6 +70,7 @@ contains
             call quad8_point(xy, gx(g), gx(h), nsh, b, detj)
             if (.not. detj > 0.0_wp) then
                sig = 0.0_wp
+               if (present(signode)) signode = 0.0_wp
                return
             end if
             sig = sig + (gw(g)*gw(h)*detj)*matmul(d, matmul(b, ue(1:16)))
@@ -74,6 +78,13 @@ contains
          end do
       end do
       sig = sig/area
+      if (present(signode)) then
+         do g = 1, 8
+            call quad8_point(xy, xi_node(g), eta_node(g), nsh, b, detj)
+            signode(:, g) = sig
+            if (detj > 0.0_wp) signode(:, g) = matmul(d, matmul(b, ue(1:16)))
+         end do
+      end if
    end subroutine quad8_stress
 
    !> w_i = integral of N_i (3 x 3 Gauss; the corner weights are negative,

@@ -49,9 +49,14 @@ contains
    end subroutine tri6_stiffness
 
    !> Mean stress (sxx, syy, sxy) over the element; zero for a rejected element.
-   pure subroutine tri6_stress(xy, d, ue, sig)
+   !> `signode(3, 6)` (optional): the stress at each node (linear on a
+   !> straight-sided triangle, so its nodal values are exact for quadratic fields).
+   pure subroutine tri6_stress(xy, d, ue, sig, signode)
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
       real(wp), intent(out) :: sig(3)
+      real(wp), intent(out), optional :: signode(:, :)
+      real(wp), parameter :: xin(6) = [0.0_wp, 1.0_wp, 0.0_wp, 0.5_wp, 0.5_wp, 0.0_wp]
+      real(wp), parameter :: etan(6) = [0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.5_wp, 0.5_wp]
       real(wp) :: b(3, 12), detj, nsh(6), area
       integer :: g
       sig = 0.0_wp
@@ -60,12 +65,20 @@ contains
          call tri6_point(xy, gxi(g), geta(g), nsh, b, detj)
          if (.not. detj > 0.0_wp) then
             sig = 0.0_wp
+            if (present(signode)) signode = 0.0_wp
             return
          end if
          sig = sig + (gw*detj)*matmul(d, matmul(b, ue(1:12)))
          area = area + gw*detj
       end do
       sig = sig/area
+      if (present(signode)) then
+         do g = 1, 6
+            call tri6_point(xy, xin(g), etan(g), nsh, b, detj)
+            signode(:, g) = sig
+            if (detj > 0.0_wp) signode(:, g) = matmul(d, matmul(b, ue(1:12)))
+         end do
+      end if
    end subroutine tri6_stress
 
    !> w_i = integral of N_i: 0 at the corners and |E|/3 at the side nodes of a

@@ -25,8 +25,9 @@ contains
    !>
    !> `s_at` (optional, (4, size of elem_conn)): each element's own stress at
    !> each of its nodes (connectivity order), averaged instead of the element
-   !> value: the k = 2 virtual element's stress is linear, and its nodal values
-   !> are better estimates at the nodes than its mean.
+   !> value: the stress of a second-order element varies over it (linear for
+   !> the k = 2 virtual element), and its nodal values are better estimates at
+   !> the nodes than its mean.
    subroutine nodal_average(model, s_elem, s_node, s_at)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: s_elem(:, :)    !< (4, nelem)
