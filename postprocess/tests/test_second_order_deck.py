@@ -207,6 +207,25 @@ E, GRAV, 0.01, 0.0, -1.0
         sn = np.array(f["steps/0001/S_node"])
     assert np.abs(sn[:, 1] - 0.01 * (x[:, 1] - 1)).max() <= 1e-10 * 0.01
     assert np.abs(sn[:, [0, 3]]).max() <= 1e-10 * 0.01
+    # strains E from the same recovery (nu = 0, plane stress: eyy = syy / E, exx =
+    # gamma = 0, ezz = 0): exact at the element (centroid height 0.5) and at every node
+    with h5py.File(tmp_path / "g.h5") as f:
+        ee = np.array(f["steps/0001/E_element"])
+        en = np.array(f["steps/0001/E_node"])
+        rf = np.array(f["steps/0001/RF"])
+        rf_total = np.array(f["steps/0001/RF_total"])
+    assert ee[:, 1] == pytest.approx([-0.005 / 1000, -0.005 / 1000], rel=1e-10)
+    assert np.abs(en[:, 1] - 0.01 * (x[:, 1] - 1) / 1000).max() <= 1e-10 * 1e-5
+    assert np.abs(en[:, [0, 2, 3]]).max() <= 1e-10 * 1e-5
+    # reactions: the bottom (corners and side nodes) carries the weight rho g |block| t = 0.02,
+    # with the consistent side-node share of the k = 2 element (not zero at the side nodes)
+    assert rf_total == pytest.approx([0.0, 0.02], abs=1e-12)
+    assert rf[:, 1].sum() == pytest.approx(0.02, rel=1e-12)
+    assert np.abs(rf[x[:, 1] > 0]).max() == 0.0
+    m = meshio.read(tmp_path / "g_0001.vtu")
+    assert [c.type for c in m.cells] == ["polygon"] and m.cells[0].data.shape == (2, 8)
+    assert np.array_equal(m.point_data["RF"][:, :2], rf)
+    assert np.allclose(m.point_data["E"][:, 4], en[:, 1], rtol=0, atol=1e-20)
 
 
 @pytest.mark.parametrize("text,msg", [

@@ -30,6 +30,8 @@ contains
          call err_at(p, p%step_loc, 'the step is not closed by *END STEP')
          call end_step(p, model)
       end if
+      if (allocated(p%warnings)) call move_alloc(p%warnings, model%warnings)
+      if (.not. allocated(model%warnings)) allocate (model%warnings(0))
       allocate (model%files(p%src%nfiles))
       do k = 1, p%src%nfiles
          model%files(k)%s = p%src%files(k)%path

@@ -16,6 +16,7 @@ module vemcontact_deck_loads
    use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param, has_param, to_upper, &
                                      squeeze, int_str
    use vemcontact_deck_numbers, only: parse_int, num_ok
+   use vemcontact_deck_outputs, only: carry_outputs
    implicit none
    private
 
@@ -510,6 +511,7 @@ contains
       p%nstep = p%nstep + 1
       call acc_to_step(p%cur, t(p%nstep))
       t(p%nstep)%loc = p%step_loc
+      if (p%nstep > 1) call carry_outputs(t(p%nstep - 1), t(p%nstep), p%cur%out_seen)
       call move_alloc(t, model%steps)
       p%in_step = .false.
       p%cur = step_acc_t()
@@ -526,6 +528,7 @@ contains
       call move_alloc(a%boundary, b%boundary)
       call move_alloc(a%cload, b%cload)
       call move_alloc(a%dload, b%dload)
+      call move_alloc(a%outputs, b%outputs)
       b%loc = a%loc
    end subroutine move_step
 
@@ -542,5 +545,7 @@ contains
       if (acc%nb > 0) s%boundary = acc%boundary(1:acc%nb)
       if (acc%nc > 0) s%cload = acc%cload(1:acc%nc)
       if (acc%nd > 0) s%dload = acc%dload(1:acc%nd)
+      allocate (s%outputs(acc%nout))
+      if (acc%nout > 0) s%outputs = acc%outputs(1:acc%nout)
    end subroutine acc_to_step
 end module vemcontact_deck_loads

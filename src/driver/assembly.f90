@@ -4,7 +4,7 @@ module vemcontact_driver_assembly
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, append_message, err_model, err_internal
    use vemcontact_model, only: model_t, dload_t, location_string, dload_grav, dload_pressure, dload_hydrostatic, &
-                               element_order, element_side
+                               element_order, element_side, plane_stress
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_material_elastic, only: elastic_matrix, out_of_plane_stress
@@ -13,7 +13,7 @@ module vemcontact_driver_assembly
    implicit none
    private
 
-   public :: assemble_stiffness, assemble_loads, element_stresses, max_element_nodes, hydrostatic_moments
+   public :: assemble_stiffness, assemble_loads, element_stresses, element_strains, max_element_nodes, hydrostatic_moments
 
 contains
 
@@ -284,18 +284,11 @@ contains
       real(wp), intent(out), optional :: s_at(:, :)
       real(wp), allocatable :: xy(:, :), ue(:), work(:), body(:, :), sn(:, :)
       real(wp) :: d(3, 3), sig(3)
-      integer :: e, n, i, nmax, k
+      integer :: e, n, i, nmax
       integer(ip) :: first, node
       nmax = max_element_nodes(model)
       allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)), sn(3, nmax))
-      allocate (body(2, model%nelem), source=0.0_wp)
-      if (present(dloads)) then
-         do k = 1, size(dloads)
-            if (dloads(k)%kind /= dload_grav) cycle
-            e = dloads(k)%elem
-            body(:, e) = body(:, e) + model%materials(model%elem_mat(e))%density*dloads(k)%magnitude*dloads(k)%dir
-         end do
-      end if
+      body = element_body_forces(model, dloads)
       do e = 1, model%nelem
          first = model%elem_ptr(e)
          n = model%elem_ptr(e + 1) - first
@@ -320,4 +313,104 @@ contains
          end associate
       end do
    end subroutine element_stresses
+
+   !> Body force per unit volume of every element (2, nelem): the sum of the
+   !> GRAV loads among `dloads` (zero without them).
+   pure function element_body_forces(model, dloads) result(body)
+      type(model_t), intent(in) :: model
+      type(dload_t), intent(in), optional :: dloads(:)
+      real(wp), allocatable :: body(:, :)
+      integer :: k, e
+      allocate (body(2, model%nelem), source=0.0_wp)
+      if (.not. present(dloads)) return
+      do k = 1, size(dloads)
+         if (dloads(k)%kind /= dload_grav) cycle
+         e = dloads(k)%elem
+         body(:, e) = body(:, e) + model%materials(model%elem_mat(e))%density*dloads(k)%magnitude*dloads(k)%dir
+      end do
+   end function element_body_forces
+
+   !> Element strains E (total strain, Abaqus' E) `(xx, yy, zz, xy)` with the
+   !> engineering shear strain gamma_xy = 2 eps_xy, as Abaqus writes E12; the
+   !> same recovery as element_stresses, so that S = D E holds element by element.
+   !> First-order elements: every kernel's stress is d times its (projected, for
+   !> VEM; Gauss-averaged, for the quad) strain, so the kernel run with
+   !> d = identity returns that strain.  Second-order elements: the kernel run
+   !> with the element's D (the k = 2 virtual element's condensed cell moments
+   !> depend on D and on the body force in `dloads`), E = D^-1 S.
+   !> zz: 0 in plane strain; in plane stress the thickness strain
+   !> -nu/(1 - nu) (xx + yy) that makes S_zz zero.
+   !> `e_at` (optional, (4, size of elem_conn)): each element's strain at each of
+   !> its nodes, for nodal_average (as element_stresses' s_at).
+   subroutine element_strains(model, u, e_elem, dloads, e_at)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      real(wp), intent(out) :: e_elem(:, :)
+      type(dload_t), intent(in), optional :: dloads(:)
+      real(wp), intent(out), optional :: e_at(:, :)
+      real(wp), allocatable :: xy(:, :), ue(:), work(:), body(:, :), en(:, :)
+      real(wp), parameter :: identity(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
+                                                       0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
+      real(wp) :: eps(3), d(3, 3), nu
+      integer :: e, n, i, nmax, order
+      integer(ip) :: first, node
+      nmax = max_element_nodes(model)
+      allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)), en(3, nmax))
+      body = element_body_forces(model, dloads)
+      do e = 1, model%nelem
+         first = model%elem_ptr(e)
+         n = model%elem_ptr(e + 1) - first
+         do i = 1, n
+            node = model%elem_conn(first + i - 1)
+            xy(:, i) = model%x(:, node)
+            ue(2*i - 1:2*i) = u(2*node - 1:2*node)
+         end do
+         order = element_order(model%elem_type(e))
+         nu = model%materials(model%elem_mat(e))%poisson
+         if (order == 2) then
+            associate (mat => model%materials(model%elem_mat(e)))
+               call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
+            end associate
+            call element_stress(model%elem_form(e), xy(:, :n), d, ue(:2*n), work, eps, order, &
+                                model%elem_thick(e), stab(model, e), body(:, e), en(:, :n))
+            eps = strain_of(d, eps)
+            do i = 1, n
+               en(:, i) = strain_of(d, en(:, i))
+            end do
+         else
+            call element_stress(model%elem_form(e), xy(:, :n), identity, ue(:2*n), work, eps)
+            do i = 1, n
+               en(:, i) = eps
+            end do
+         end if
+         e_elem(:, e) = strain4(eps, nu, model%elem_plane(e))
+         if (present(e_at)) then
+            do i = 1, n
+               e_at(:, first + i - 1) = strain4(en(:, i), nu, model%elem_plane(e))
+            end do
+         end if
+      end do
+   end subroutine element_strains
+
+   !> The strain (xx, yy, gamma_xy) whose stress under the elastic matrix d is sig:
+   !> d has the isotropic block form [a b 0; b a 0; 0 0 g] (elastic_matrix).
+   pure function strain_of(d, sig) result(eps)
+      real(wp), intent(in) :: d(3, 3), sig(3)
+      real(wp) :: eps(3), det
+      det = d(1, 1)*d(2, 2) - d(1, 2)*d(2, 1)
+      eps(1) = (d(2, 2)*sig(1) - d(1, 2)*sig(2))/det
+      eps(2) = (d(1, 1)*sig(2) - d(2, 1)*sig(1))/det
+      eps(3) = sig(3)/d(3, 3)
+   end function strain_of
+
+   !> (xx, yy, zz, xy) strain from the in-plane (xx, yy, gamma_xy): zz is 0 in
+   !> plane strain, -nu/(1 - nu) (xx + yy) in plane stress.
+   pure function strain4(eps, nu, plane) result(e4)
+      real(wp), intent(in) :: eps(3), nu
+      integer, intent(in) :: plane
+      real(wp) :: e4(4), ezz
+      ezz = 0.0_wp
+      if (plane == plane_stress) ezz = -nu/(1.0_wp - nu)*(eps(1) + eps(2))
+      e4 = [eps(1), eps(2), ezz, eps(3)]
+   end function strain4
 end module vemcontact_driver_assembly

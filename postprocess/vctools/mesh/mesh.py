@@ -338,7 +338,7 @@ def split_joint(m, name, polyline, master_side, tol):
         cells = cell[pos]
         parent = list(range(len(pos)))
 
-        def find(i):
+        def find(i, parent=parent):
             while parent[i] != i:
                 parent[i] = parent[parent[i]]
                 i = parent[i]

@@ -6,7 +6,6 @@ import os
 import numpy as np
 
 from vctools.plot import curves
-from vctools.plot.results import ResultError
 from . import runs as rr
 from .reproduce import (CANTILEVER_EXACT, E_PLANE_STRAIN, HERTZ_ARGS, JOINT_LINE, P_INTERFACE, PAPER_FEM,
                         PAPER_P0, PAPER_VEM, Q4_CLOSED_FORM, ROOT, contour, dam_stats, hertz_contour,
@@ -137,7 +136,8 @@ def write_document(plan, work: str, out: str, figs: str, t_runs: float) -> str:
                 md.append(f"- **Second order** (meshes `inputs/meshes/ex1_cantilever_2db_*_{{vem2,fem2}}.inp`: the "
                           f"same two quads with a node at the middle of every side, VPE2 and CPE8). The k = 2 "
                           f"virtual element gives the exact deflection at every 2d/b (ratio 1 within "
-                          f"{max(max(abs(v - 1) for v in v2), 1e-16):.0e}): pure bending is a quadratic displacement field, which the k = 2 element "
+                          f"{max(max(abs(v - 1) for v in v2), 1e-16):.0e}): pure bending is a quadratic "
+                          f"displacement field, which the k = 2 element "
                           f"reproduces exactly on any straight-sided polygon, so the distortion does not matter. "
                           f"This is the paper's claim of insensitivity, reproduced with the second-order element "
                           f"(tests/unit/driver/test_second_order.f90 asserts 1 within 1e-8 for 2d/b in "
@@ -335,7 +335,7 @@ def write_document(plan, work: str, out: str, figs: str, t_runs: float) -> str:
         curves.plot_pressure([rr.read_contact(jobs[f"hard_hertz_{fine}_{f_}_{k_}"].out)
                               for f_, k_ in (("vem", "nts"), ("vem", "sts"), ("fem", "nts"))],
                              os.path.join(figs, "fig07b_hertz_pressure_hard.png"),
-                             labels=[f"VEM, NTS, HARD", f"VEM, STS, HARD", f"FEM (Q4), NTS, HARD"],
+                             labels=["VEM, NTS, HARD", "VEM, STS, HARD", "FEM (Q4), NTS, HARD"],
                              hertz_args=HERTZ_ARGS, along="x", units="m,Pa", xmax=3.0, gap=False,
                              title=f"contact pressure with HARD contact, {fine} elements")
         fig("fig07b_hertz_pressure_hard.png", "pressure with HARD contact: NTS and STS against Hertz")

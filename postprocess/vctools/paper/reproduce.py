@@ -42,7 +42,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from vctools.plot import curves
 from vctools.plot.results import ResultError
 from . import runs as rr
 

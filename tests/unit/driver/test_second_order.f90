@@ -9,7 +9,10 @@
 !>    GRAV record): k = 2 VEM on dual, non-convex and collinear-corner meshes,
 !>    the 6-node triangle on perturbed triangles, the 8-node quad on rectangles;
 !>    the recovered element stress is the exact mean stress, and each element's
-!>    stress at its nodes the exact nodal stress;
+!>    stress at its nodes the exact nodal stress; the same for the strains E
+!>    (element_strains, the same recovery); the reactions RF = K u - f at the
+!>    constrained boundary balance the applied body force (resultant and moment,
+!>    the body force's resultant computed independently from the element areas);
 !>  - uniform pressure on second-order sides (consistent 1/6, 4/6, 1/6 loads):
 !>    the exact uniform stress state on a block;
 !>  - hydrostatic pressure cut by its free surface on a second-order side gives
@@ -23,8 +26,9 @@ program test_second_order
    use vemcontact_material_elastic, only: elastic_matrix
    use vemcontact_driver_linear, only: linear_system_t, ordering_auto
    use vemcontact_driver_load_state, only: load_state_t
-   use vemcontact_driver_assembly, only: element_stresses, assemble_loads
-   use vemcontact_element_geometry, only: polygon_centroid
+   use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
+   use vemcontact_post_reactions, only: reaction_forces
+   use vemcontact_element_geometry, only: polygon_centroid, polygon_signed_area
    use vemcontact_test_model, only: make_model
    use vemcontact_test_polymesh, only: cantilever_two_quads, dual_polymesh, hanging_quad_grid, quad_grid
    use vemcontact_test_second_order, only: add_side_nodes, boundary_mask2, split_quads
@@ -154,9 +158,10 @@ contains
       type(linear_system_t) :: sys
       type(load_state_t) :: st
       type(error_t), allocatable :: error
-      real(wp), allocatable :: u(:), uex(:), s_elem(:, :), s_at(:, :)
+      real(wp), allocatable :: u(:), uex(:), s_elem(:, :), s_at(:, :), e_elem(:, :), e_at(:, :)
+      real(wp), allocatable :: ku(:), f(:), rf(:, :)
       logical, allocatable :: onb(:)
-      real(wp) :: d(3, 3), b(2), c(2), sig(3), err
+      real(wp) :: d(3, 3), b(2), c(2), sig(3), eps(3), err, area, mom
       integer :: i, e, n
       call make_model(x, ptr, conn, 2.0e5_wp, 0.3_wp, plane, form, 0.5_wp, m, order=2)
       m%materials(1)%density = 2.0_wp
@@ -207,7 +212,57 @@ contains
       ! 1e-8: the mean of a stress field whose nodal values are reproduced to 1e-13
       ! relative, through the element's dense solves
       call t%check(err <= 1.0e-8_wp, what//': element stress is the exact mean stress')
+
+      ! strains E: the same recovery, exact at the nodes and as the element mean
+      ! (engineering shear gamma_xy; zz the plane-stress thickness strain)
+      allocate (e_elem(4, m%nelem), e_at(4, size(conn)))
+      call element_strains(m, u, e_elem, st%dload, e_at)
+      err = 0
+      do i = 1, size(conn)
+         eps = strain(x(:, conn(i)))
+         err = max(err, maxval(abs(e_at([1, 2, 4], i) - eps))/maxval(abs(eps)), &
+                   abs(e_at(3, i) - ezz_of(eps, plane))/maxval(abs(eps)))
+      end do
+      ! 1e-8 as for the stresses (E = D^-1 S, D well conditioned at nu = 0.3)
+      call t%check(err <= 1.0e-8_wp, what//': element strains at the nodes exact')
+      err = 0
+      area = 0
+      do e = 1, int(m%nelem)
+         n = (ptr(e + 1) - ptr(e))/2
+         call polygon_centroid(x(:, conn(ptr(e):ptr(e) + n - 1)), c)
+         area = area + polygon_signed_area(x(:, conn(ptr(e):ptr(e) + n - 1)))
+         eps = strain(c)
+         err = max(err, maxval(abs(e_elem([1, 2, 4], e) - eps))/maxval(abs(eps)), &
+                   abs(e_elem(3, e) - ezz_of(eps, plane))/maxval(abs(eps)))
+      end do
+      call t%check(err <= 1.0e-8_wp, what//': element strain is the exact mean strain')
+
+      ! reactions: K annihilates rigid motions, so the reactions at the fixed
+      ! boundary balance the body force: sum RF = -b rho |Omega| t (the body
+      ! force's resultant from the areas, independent of the element load
+      ! vectors) and the moments of RF and f about the origin cancel
+      allocate (ku(2*m%nnode), f(2*m%nnode), rf(2, m%nnode))
+      call sys%elastic_times(u, ku)
+      call assemble_loads(m, st%force, st%dload, f)
+      call reaction_forces(ku, f, st%fixed, rf)
+      err = maxval(abs(sum(rf, dim=2) + b*area*0.5_wp))/maxval(abs(b*area*0.5_wp))
+      mom = 0
+      do i = 1, int(m%nnode)
+         mom = mom + x(1, i)*(rf(2, i) + f(2*i)) - x(2, i)*(rf(1, i) + f(2*i - 1))
+      end do
+      err = max(err, abs(mom)/(maxval(abs(b*area*0.5_wp))*maxval(abs(x))))
+      print '(a,es10.2)', what//': reaction balance, relative error ', err
+      ! 1e-10: round-off of K u over the boundary nodes (the balance is exact)
+      call t%check(err <= 1.0e-10_wp, what//': reactions balance the body force (resultant and moment)')
    end subroutine patch
+
+   !> Thickness strain of the in-plane strain eps at nu = 0.3: 0 in plane strain.
+   pure real(wp) function ezz_of(eps, plane)
+      real(wp), intent(in) :: eps(3)
+      integer, intent(in) :: plane
+      ezz_of = 0
+      if (plane == plane_stress) ezz_of = -0.3_wp/(1 - 0.3_wp)*(eps(1) + eps(2))
+   end function ezz_of
 
    !> The unit block under a uniform pressure p on its top (y = 1) sides, rollers
    !> on the bottom and the left: uniform stress syy = -p, so the linear
