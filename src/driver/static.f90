@@ -5,6 +5,7 @@ module vemcontact_driver_static
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t
    use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic, &
+                               element_order, etype_polygon2, &
                                pair_surface_to_surface
    use vemcontact_sparse_mmio, only: write_matrix_market
    use vemcontact_driver_linear, only: linear_system_t
@@ -53,12 +54,13 @@ contains
       integer, allocatable :: parts(:)
       integer :: ip_
       type(h5_writer_t) :: h5
-      real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:)
-      real(wp), allocatable :: ku(:), f(:), set_rf(:, :)
+      real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:), s_at(:, :)
+      real(wp), allocatable :: e_at(:, :), ku(:), f(:), set_rf(:, :)
       integer, allocatable :: rf_sets(:)
       type(string_t), allocatable :: set_names(:)
       type(vtu_extras_t) :: extra
       type(field_selection_t) :: sel
+      integer :: ie
       type(string_t), allocatable :: vtu_files(:), warnings(:)
       real(wp) :: t0
       integer :: istep, iw
@@ -82,9 +84,10 @@ contains
       write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'nodes ', model%nnode, ', elements ', model%nelem, &
          ', unknowns ', 2*model%nnode, ', steps ', size(model%steps)
       call log%say(trim(buf))
-      write (buf, '(2x,a,i0,a,i0,a,i0)') 'VEM elements ', count(model%elem_form == form_vem), &
+      write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'VEM elements ', count(model%elem_form == form_vem), &
          ', FEM elements ', count(model%elem_form == form_fem), ', of them polygons (VPE/VPS) ', &
-         count(model%elem_type == etype_polygon)
+         count(model%elem_type == etype_polygon), ', second-order polygons (VPE2/VPS2) ', &
+         count(model%elem_type == etype_polygon2)
       call log%say(trim(buf))
 
       if (contact%n > 0) then
@@ -136,6 +139,8 @@ contains
       allocate (u(2*model%nnode), s_elem(4, model%nelem), s_node(4, model%nnode))
       allocate (extra%e_elem(4, model%nelem), extra%e_node(4, model%nnode), extra%rf(2, model%nnode))
       allocate (ku(2*model%nnode), f(2*model%nnode))
+      if (any([(element_order(model%elem_type(ie)) == 2, ie=1, int(model%nelem))])) &
+         allocate (s_at(4, model%elem_ptr(model%nelem + 1) - 1), e_at(4, model%elem_ptr(model%nelem + 1) - 1))
       ! displacements are reported relative to the end of a geostatic step
       allocate (u_ref(2*model%nnode), source=0.0_wp)
       allocate (vtu_files(0), times(0), parts(0))
@@ -168,11 +173,21 @@ contains
          u_out = u - u_ref
 
          t0 = wall_time()
-         call element_stresses(model, u, s_elem)
-         call nodal_average(model, s_elem, s_node)
-         ! strains from the same displacements as the stresses (S = D E element by element)
-         call element_strains(model, u, extra%e_elem)
-         call nodal_average(model, extra%e_elem, extra%e_node)
+         ! second-order elements give their own stress and strain at each node
+         ! (linear for the k = 2 VEM), averaged at the nodes instead of the
+         ! element values; strains from the same recovery as the stresses
+         ! (S = D E element by element)
+         if (allocated(s_at)) then
+            call element_stresses(model, u, s_elem, st%dload, s_at)
+            call nodal_average(model, s_elem, s_node, s_at)
+            call element_strains(model, u, extra%e_elem, st%dload, e_at)
+            call nodal_average(model, extra%e_elem, extra%e_node, e_at)
+         else
+            call element_stresses(model, u, s_elem, st%dload)
+            call nodal_average(model, s_elem, s_node)
+            call element_strains(model, u, extra%e_elem, st%dload)
+            call nodal_average(model, extra%e_elem, extra%e_node)
+         end if
          ! reactions: K u - f_ext at the constrained dofs, with the loads in force
          call sys%elastic_times(u, ku)
          call assemble_loads(model, st%force, st%dload, f)

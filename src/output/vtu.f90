@@ -4,8 +4,9 @@
 !>
 !> Cells of 3 and 4 nodes are VTK_TRIANGLE (5) and VTK_QUAD (9), whatever their
 !> formulation (a VEM triangle or quadrilateral has the same linear boundary as
-!> the FEM element), all others VTK_POLYGON (7): readers such as meshio then
-!> know them as "triangle"/"quad" and can export to formats without polygons.
+!> the FEM element), all other first-order cells VTK_POLYGON (7): readers such
+!> as meshio then know them as "triangle"/"quad" and can export to formats
+!> without polygons.  Second-order elements: see second_order_cells.
 !> The element's own kind is in `/mesh/element_type` of the HDF5 file.
 !>
 !> The file is written with stream access as raw bytes (XML text and base64
@@ -17,7 +18,7 @@ module vemcontact_output_vtu
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
-   use vemcontact_model, only: model_t
+   use vemcontact_model, only: model_t, etype_polygon2, etype_quad8, etype_tri6
    use vemcontact_post_stress, only: principal_stresses
    use vemcontact_output_base64, only: base64_encode, base64_length, as_bytes
    use vemcontact_output_zlib, only: zlib_bound, zlib_compress
@@ -31,6 +32,8 @@ module vemcontact_output_vtu
 
    !> VTK cell types of the elements.
    integer, parameter :: vtk_triangle = 5, vtk_quad = 9, vtk_polygon = 7
+   !> VTK cell types of the quadratic FEM elements (same node order as Abaqus')
+   integer, parameter :: vtk_quadratic_triangle = 22, vtk_quadratic_quad = 23
    !> Uncompressed bytes per zlib block: VTK reads any block size; 256 KiB keeps
    !> zlib's per-call setup negligible and the block table short.
    integer(i8), parameter :: zlib_block = 262144_i8
@@ -65,6 +68,44 @@ module vemcontact_output_vtu
    end interface
 
 contains
+
+   !> Connectivity (1-based, as the model's) and VTK cell type of every element.
+   !> First-order elements: their nodes, with the type of vtk_cell_type (triangle,
+   !> quad or polygon by the node count).  Second order: the
+   !> 6-node triangle and the 8-node quad as VTK_QUADRATIC_TRIANGLE (22) and
+   !> VTK_QUADRATIC_QUAD (23), whose node order is Abaqus' (corners, then side
+   !> nodes); a second-order polygon as a VTK_POLYGON through all its 2n nodes
+   !> in boundary order (corner 1, side node 1, corner 2, ...), so that the
+   !> side nodes are kept and readers without quadratic polygons draw it.
+   subroutine second_order_cells(model, conn, types)
+      type(model_t), intent(in) :: model
+      integer(ip), allocatable, intent(out) :: conn(:)
+      character(len=:), allocatable, intent(out) :: types
+      integer :: e, n, i
+      integer(ip) :: p0
+      conn = model%elem_conn(1:model%elem_ptr(model%nelem + 1) - 1)
+      allocate (character(len=model%nelem) :: types)
+      do e = 1, model%nelem
+         types(e:e) = achar(vtk_cell_type(model%elem_ptr(e + 1) - model%elem_ptr(e)))
+      end do
+      if (.not. allocated(model%elem_type)) return
+      do e = 1, model%nelem
+         select case (model%elem_type(e))
+         case (etype_tri6)
+            types(e:e) = achar(vtk_quadratic_triangle)
+         case (etype_quad8)
+            types(e:e) = achar(vtk_quadratic_quad)
+         case (etype_polygon2)
+            types(e:e) = achar(vtk_polygon)
+            p0 = model%elem_ptr(e)
+            n = (model%elem_ptr(e + 1) - p0)/2
+            do i = 1, n
+               conn(p0 + 2*i - 2) = model%elem_conn(p0 + i - 1)
+               conn(p0 + 2*i - 1) = model%elem_conn(p0 + n + i - 1)
+            end do
+         end select
+      end do
+   end subroutine second_order_cells
 
    !> Write the mesh with displacements and stresses to the .vtu file `path`.
    !> Point data: U (3 comps, z = 0), S (xx,yy,zz,xy averaged at nodes), S1, S3,
@@ -191,14 +232,10 @@ contains
 
       ! topology: 0-based connectivity, offsets = end of each cell (VTK XML convention)
       call put(unit, '<Cells>'//nl, ios)
-      call put_array(unit, 'type="'//itype//'" Name="connectivity"', &
-                     as_bytes(model%elem_conn(1:model%elem_ptr(model%nelem + 1) - 1) - 1_ip), ios, z)
+      call second_order_cells(model, ibuf, types)
+      call put_array(unit, 'type="'//itype//'" Name="connectivity"', as_bytes(ibuf - 1_ip), ios, z)
       ibuf = model%elem_ptr(2:model%nelem + 1) - 1_ip
       call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios, z)
-      allocate (character(len=model%nelem) :: types)
-      do i = 1, model%nelem
-         types(i:i) = achar(vtk_cell_type(model%elem_ptr(i + 1) - model%elem_ptr(i)))
-      end do
       call put_array(unit, 'type="UInt8" Name="types"', types, ios, z)
       call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
 
