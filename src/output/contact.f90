@@ -10,8 +10,9 @@ module vemcontact_output_contact
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io
    use vemcontact_output_base64, only: as_bytes
-   use vemcontact_output_vtu, only: put, put_array, byte_order, int_type_name, itoa, replace_file
+   use vemcontact_output_vtu, only: put, put_array, vtk_file_attributes, int_type_name, itoa, replace_file
    use vemcontact_contact_table, only: contact_table_t
+   use vemcontact_output_selection, only: field_selection_t
    implicit none
    private
 
@@ -20,25 +21,39 @@ module vemcontact_output_contact
 
 contains
 
-   !> CSV of the entries of `tab` that belong to pair `ipair`, full precision.
-   subroutine write_contact_csv(path, tab, ipair, error)
+   !> CSV of the entries of `tab` that belong to pair `ipair`, full precision; with
+   !> `sel` only the selected columns of COPEN, CPRESS, CSLIP (node, x, y, CNAREA and
+   !> STATUS always).
+   subroutine write_contact_csv(path, tab, ipair, error, sel)
       character(len=*), intent(in) :: path
       type(contact_table_t), intent(in) :: tab
       integer, intent(in) :: ipair
       type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       integer :: unit, ios, k
       character(len=512) :: msg
+      character(len=:), allocatable :: head
+      if (present(sel)) w = sel
       open (newunit=unit, file=path//'.tmp', status='replace', action='write', iostat=ios, iomsg=msg)
       if (ios /= 0) then
          call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
          return
       end if
-      write (unit, '(a)', iostat=ios) 'node,x,y,COPEN,CPRESS,CSLIP,CNAREA,STATUS'
+      head = 'node,x,y'
+      if (w%copen) head = head//',COPEN'
+      if (w%cpress) head = head//',CPRESS'
+      if (w%cslip) head = head//',CSLIP'
+      write (unit, '(a)', iostat=ios) head//',CNAREA,STATUS'
       do k = 1, size(tab%node_id)
          if (tab%pair(k) /= ipair) cycle
          if (ios /= 0) exit
-         write (unit, '(i0,6(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
-            tab%copen(k), tab%cpress(k), tab%cslip(k), tab%cnarea(k), status_name(tab%status(k))
+         write (unit, '(i0,2(",",es24.16e3))', advance='no', iostat=ios) tab%node_id(k), tab%x(:, k)
+         if (w%copen) call column(tab%copen(k))
+         if (w%cpress) call column(tab%cpress(k))
+         if (w%cslip) call column(tab%cslip(k))
+         call column(tab%cnarea(k))
+         if (ios == 0) write (unit, '(",",a)', iostat=ios) status_name(tab%status(k))
       end do
       close (unit)
       if (ios /= 0) then
@@ -46,6 +61,12 @@ contains
          return
       end if
       call replace_file(path//'.tmp', path, error)
+   contains
+      subroutine column(v)
+         real(wp), intent(in) :: v
+         if (ios /= 0) return
+         write (unit, '(",",es24.16e3)', advance='no', iostat=ios) v
+      end subroutine column
    end subroutine write_contact_csv
 
    !> CSV name of a STATUS value.
@@ -62,11 +83,19 @@ contains
       end select
    end function status_name
 
-   !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, CSLIP, CNAREA, STATUS, PAIR, NODE_ID.
-   subroutine write_contact_vtu(path, tab, error)
+   !> All entries of `tab` as VTK vertices with point data U (the slave nodes'
+   !> displacements, so that warping moves them with the mesh), COPEN, CPRESS,
+   !> CSLIP, CNAREA, STATUS, PAIR, NODE_ID; zlib-compressed arrays unless
+   !> `compress` is present and false.  With `sel` only the selected of U, COPEN,
+   !> CPRESS and CSLIP are written (the labels CNAREA, STATUS, PAIR, NODE_ID always).
+   subroutine write_contact_vtu(path, tab, u, error, compress, sel)
       character(len=*), intent(in) :: path
       type(contact_table_t), intent(in) :: tab
+      real(wp), intent(in) :: u(:, :)     !< (2, nnode) the step's reported displacements
       type(error_t), allocatable, intent(out) :: error
+      logical, intent(in), optional :: compress
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=1), parameter :: nl = new_line('a')
       character(len=:), allocatable :: itype
       character(len=512) :: msg
@@ -74,6 +103,10 @@ contains
       integer(ip), allocatable :: ibuf(:)
       integer :: unit, ios
       integer(ip) :: n, k
+      logical :: z
+      z = .true.
+      if (present(compress)) z = compress
+      if (present(sel)) w = sel
       n = size(tab%node_id)
       itype = int_type_name()
       open (newunit=unit, file=path//'.tmp', access='stream', form='unformatted', status='replace', &
@@ -82,30 +115,33 @@ contains
          call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
          return
       end if
-      call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0" byte_order="' &
-               //byte_order()//'" header_type="UInt64">'//nl//'<UnstructuredGrid>'//nl &
+      call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0"' &
+               //vtk_file_attributes(z)//'>'//nl//'<UnstructuredGrid>'//nl &
                //'<Piece NumberOfPoints="'//itoa(int(n, i8))//'" NumberOfCells="'//itoa(int(n, i8))//'">'//nl &
-               //'<PointData>'//nl, ios)
-      call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios)
-      call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios)
-      call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios)
-      call put_array(unit, 'type="Float64" Name="CNAREA"', as_bytes(tab%cnarea), ios)
-      ibuf = int(tab%status, ip)
-      call put_array(unit, 'type="'//itype//'" Name="STATUS"', as_bytes(ibuf), ios)
-      ibuf = int(tab%pair, ip)
-      call put_array(unit, 'type="'//itype//'" Name="PAIR"', as_bytes(ibuf), ios)
-      call put_array(unit, 'type="'//itype//'" Name="NODE_ID"', as_bytes(tab%node_id), ios)
-      call put(unit, '</PointData>'//nl//'<Points>'//nl, ios)
+               //'<PointData'//trim(merge(' Vectors="U"', '            ', w%u))//'>'//nl, ios)
       allocate (xyz(3, n))
+      xyz(1:2, :) = u(:, tab%node)
+      xyz(3, :) = 0.0_wp
+      if (w%u) call put_array(unit, 'type="Float64" Name="U" NumberOfComponents="3"', as_bytes(xyz), ios, z)
+      if (w%copen) call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios, z)
+      if (w%cpress) call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios, z)
+      if (w%cslip) call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios, z)
+      call put_array(unit, 'type="Float64" Name="CNAREA"', as_bytes(tab%cnarea), ios, z)
+      ibuf = int(tab%status, ip)
+      call put_array(unit, 'type="'//itype//'" Name="STATUS"', as_bytes(ibuf), ios, z)
+      ibuf = int(tab%pair, ip)
+      call put_array(unit, 'type="'//itype//'" Name="PAIR"', as_bytes(ibuf), ios, z)
+      call put_array(unit, 'type="'//itype//'" Name="NODE_ID"', as_bytes(tab%node_id), ios, z)
+      call put(unit, '</PointData>'//nl//'<Points>'//nl, ios)
       xyz(1:2, :) = tab%x
       xyz(3, :) = 0.0_wp
-      call put_array(unit, 'type="Float64" Name="Points" NumberOfComponents="3"', as_bytes(xyz), ios)
+      call put_array(unit, 'type="Float64" Name="Points" NumberOfComponents="3"', as_bytes(xyz), ios, z)
       call put(unit, '</Points>'//nl//'<Cells>'//nl, ios)
       ibuf = [(k - 1_ip, k=1, n)]
-      call put_array(unit, 'type="'//itype//'" Name="connectivity"', as_bytes(ibuf), ios)
+      call put_array(unit, 'type="'//itype//'" Name="connectivity"', as_bytes(ibuf), ios, z)
       ibuf = ibuf + 1_ip
-      call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios)
-      call put_array(unit, 'type="UInt8" Name="types"', repeat(achar(1), n), ios)   ! VTK_VERTEX
+      call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios, z)
+      call put_array(unit, 'type="UInt8" Name="types"', repeat(achar(1), n), ios, z)   ! VTK_VERTEX
       call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
       close (unit)
       if (ios /= 0) then
