@@ -149,7 +149,7 @@ contains
       real(wp), intent(inout) :: u(:)
       type(error_t), allocatable, intent(out) :: error
       type(contact_state_t), intent(inout), optional :: contact
-      type(logger_t), intent(in), optional :: log
+      type(logger_t), intent(inout), optional :: log
       logical, allocatable :: fixed(:)
       real(wp), allocatable :: f(:)
       real(wp) :: t0

@@ -8,9 +8,10 @@
 !> length * thickness), STATUS (1 closed, 0 open, 2 slid off the master's end), PAIR.
 module vemcontact_output_contact
    use vemcontact_kinds, only: wp, ip, i8
-   use vemcontact_error, only: error_t, fatal_error, err_io
+   use vemcontact_error, only: error_t
    use vemcontact_output_base64, only: as_bytes
-   use vemcontact_output_vtu, only: put, put_array, byte_order, int_type_name, itoa, replace_file
+   use vemcontact_output_vtu, only: put, put_array, byte_order, int_type_name, itoa
+   use vemcontact_safe_file, only: safe_file_t
    use vemcontact_contact_table, only: contact_table_t
    implicit none
    private
@@ -26,26 +27,19 @@ contains
       type(contact_table_t), intent(in) :: tab
       integer, intent(in) :: ipair
       type(error_t), allocatable, intent(out) :: error
-      integer :: unit, ios, k
-      character(len=512) :: msg
-      open (newunit=unit, file=path//'.tmp', status='replace', action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
-         return
-      end if
-      write (unit, '(a)', iostat=ios) 'node,x,y,COPEN,CPRESS,CSLIP,CNAREA,STATUS'
+      type(safe_file_t) :: out
+      integer :: k
+      character(len=256) :: line
+      call out%open(path, error)
+      if (allocated(error)) return
+      call out%write('node,x,y,COPEN,CPRESS,CSLIP,CNAREA,STATUS'//new_line('a'))
       do k = 1, size(tab%node_id)
          if (tab%pair(k) /= ipair) cycle
-         if (ios /= 0) exit
-         write (unit, '(i0,6(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
+         write (line, '(i0,6(",",es24.16e3),",",a)') tab%node_id(k), tab%x(:, k), &
             tab%copen(k), tab%cpress(k), tab%cslip(k), tab%cnarea(k), status_name(tab%status(k))
+         call out%write(trim(line)//new_line('a'))
       end do
-      close (unit)
-      if (ios /= 0) then
-         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
-         return
-      end if
-      call replace_file(path//'.tmp', path, error)
+      call out%commit(error)
    end subroutine write_contact_csv
 
    !> CSV name of a STATUS value.
@@ -69,19 +63,16 @@ contains
       type(error_t), allocatable, intent(out) :: error
       character(len=1), parameter :: nl = new_line('a')
       character(len=:), allocatable :: itype
-      character(len=512) :: msg
       real(wp), allocatable :: xyz(:, :)
       integer(ip), allocatable :: ibuf(:)
-      integer :: unit, ios
+      type(safe_file_t) :: unit
+      integer :: ios
       integer(ip) :: n, k
       n = size(tab%node_id)
       itype = int_type_name()
-      open (newunit=unit, file=path//'.tmp', access='stream', form='unformatted', status='replace', &
-            action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
-         return
-      end if
+      call unit%open(path, error)
+      if (allocated(error)) return
+      ios = 0
       call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0" byte_order="' &
                //byte_order()//'" header_type="UInt64">'//nl//'<UnstructuredGrid>'//nl &
                //'<Piece NumberOfPoints="'//itoa(int(n, i8))//'" NumberOfCells="'//itoa(int(n, i8))//'">'//nl &
@@ -107,11 +98,7 @@ contains
       call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios)
       call put_array(unit, 'type="UInt8" Name="types"', repeat(achar(1), n), ios)   ! VTK_VERTEX
       call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
-      close (unit)
-      if (ios /= 0) then
-         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
-         return
-      end if
-      call replace_file(path//'.tmp', path, error)
+      ! a failed write is reported (file and reason) by the commit
+      call unit%commit(error)
    end subroutine write_contact_vtu
 end module vemcontact_output_contact

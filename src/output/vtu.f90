@@ -6,36 +6,28 @@
 !> with FEM cells), the element's own kind is in `/mesh/element_type` of the
 !> HDF5 file, and linear triangles and quads render identically as polygons.
 !>
-!> The file is written with stream access as raw bytes (XML text and base64
-!> payloads), never a formatted write per number, to `path//'.tmp'`, and renamed
-!> to `path` only when complete: a crash leaves the previous file (or none),
-!> never a truncated one.  The rename goes through C's `rename` (atomic on
-!> POSIX file systems), the one interop spot of this module.
+!> The file is written as raw bytes (XML text and base64 payloads), never a
+!> formatted write per number, through `safe_file_t` (src/safe_file.f90): to a
+!> unique temporary beside `path`, every write checked, fsync'ed and renamed to
+!> `path` only when complete, so a crash or a full disk leaves no file of that
+!> name, never a truncated one.
 module vemcontact_output_vtu
-   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
    use vemcontact_kinds, only: wp, ip, i8
-   use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
+   use vemcontact_error, only: error_t, fatal_error, err_internal
    use vemcontact_model, only: model_t
    use vemcontact_post_stress, only: principal_stresses
    use vemcontact_output_base64, only: base64_encode, base64_length, as_bytes
+   use vemcontact_safe_file, only: safe_file_t
    implicit none
    private
 
-   public :: write_vtu, replace_file, put, put_array, byte_order, int_type_name, itoa
+   public :: write_vtu, put, put_array, byte_order, int_type_name, itoa
 
    !> VTK cell type of every element.
    integer, parameter :: vtk_polygon = 7
    !> Bytes encoded per piece: a multiple of 3 so that pieces join without padding;
    !> 3 MiB keeps the encoded buffer (4 MiB) in cache-friendly range.
    integer(i8), parameter :: piece_bytes = 3_i8*1048576_i8
-
-   interface
-      function c_rename(old, new) bind(C, name='rename') result(rc)
-         import :: c_char, c_int
-         character(kind=c_char), intent(in) :: old(*), new(*)
-         integer(c_int) :: rc
-      end function c_rename
-   end interface
 
 contains
 
@@ -49,15 +41,15 @@ contains
       real(wp), intent(in) :: s_elem(:, :)   !< (4, nelem)
       real(wp), intent(in) :: s_node(:, :)   !< (4, nnode)
       type(error_t), allocatable, intent(out) :: error
-      character(len=:), allocatable :: tmp, itype
+      character(len=:), allocatable :: itype
       character(len=*), parameter :: s_names = ' ComponentName0="XX" ComponentName1="YY"' &
                                       //' ComponentName2="ZZ" ComponentName3="XY"'
-      character(len=512) :: msg
       real(wp), allocatable :: xyz(:, :), p1(:), p3(:), vm(:)
       integer(ip), allocatable :: ibuf(:)
       character(len=:), allocatable :: types
       integer(ip) :: i
-      integer :: unit, ios
+      type(safe_file_t) :: unit
+      integer :: ios
       character(len=1), parameter :: nl = new_line('a')
 
       if (size(u, 1) /= 2 .or. size(u, 2) /= model%nnode .or. size(s_elem, 1) /= 4 &
@@ -68,13 +60,9 @@ contains
          return
       end if
       itype = int_type_name()
-      tmp = path//'.tmp'
-      open (newunit=unit, file=tmp, access='stream', form='unformatted', status='replace', &
-            action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//tmp//''' for writing: '//trim(msg), err_io)
-         return
-      end if
+      call unit%open(path, error)
+      if (allocated(error)) return
+      ios = 0
 
       call put(unit, '<?xml version="1.0"?>'//nl &
                //'<VTKFile type="UnstructuredGrid" version="1.0" byte_order="'//byte_order() &
@@ -129,35 +117,19 @@ contains
       call put_array(unit, 'type="UInt8" Name="types"', types, ios)
       call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
 
-      if (ios /= 0) then
-         close (unit, status='delete', iostat=ios)
-         call fatal_error(error, 'error while writing '''//tmp//'''', err_io)
-         return
-      end if
-      close (unit, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot close '''//tmp//''': '//trim(msg), err_io)
-         return
-      end if
-      call replace_file(tmp, path, error)
+      ! a failed write is reported (file and reason) by the commit
+      call unit%commit(error)
    end subroutine write_vtu
 
-   !> Rename `from` to `to`, replacing `to` atomically (POSIX rename).
-   subroutine replace_file(from, to, error)
-      character(len=*), intent(in) :: from, to
-      type(error_t), allocatable, intent(out) :: error
-      if (c_rename(from//c_null_char, to//c_null_char) /= 0_c_int) then
-         call fatal_error(error, 'cannot rename '''//from//''' to '''//to//'''', err_io)
-      end if
-   end subroutine replace_file
-
-   !> Write text bytes unless an earlier write failed.
+   !> Write text bytes unless an earlier write failed (`ios` becomes non-zero
+   !> once a write has failed).
    subroutine put(unit, text, ios)
-      integer, intent(in) :: unit
+      type(safe_file_t), intent(inout) :: unit
       character(len=*), intent(in) :: text
       integer, intent(inout) :: ios
       if (ios /= 0) return
-      write (unit, iostat=ios) text
+      call unit%write(text)
+      if (unit%failed()) ios = 1
    end subroutine put
 
    !> One binary DataArray: base64 of (UInt64 byte count, data), encoded as one
@@ -165,7 +137,7 @@ contains
    !> data byte form a first 9-byte piece; the rest goes in pieces of
    !> `piece_bytes` (a multiple of 3), so the text is that of one encoding.
    subroutine put_array(unit, attributes, bytes, ios)
-      integer, intent(in) :: unit
+      type(safe_file_t), intent(inout) :: unit
       character(len=*), intent(in) :: attributes
       character(len=*), intent(in) :: bytes
       integer, intent(inout) :: ios
@@ -177,13 +149,13 @@ contains
       allocate (character(len=base64_length(max(piece_bytes, 9_i8))) :: buf)
       first = min(1_i8, nb)
       call base64_encode(as_bytes(nb)//bytes(1:first), buf)
-      write (unit, iostat=ios) buf(1:base64_length(8_i8 + first))
+      call put(unit, buf(1:base64_length(8_i8 + first)), ios)
       first = first + 1
       do while (first <= nb .and. ios == 0)
          last = min(nb, first + piece_bytes - 1)
          call base64_encode(bytes(first:last), buf)
          nout = base64_length(last - first + 1)
-         write (unit, iostat=ios) buf(1:nout)
+         call put(unit, buf(1:nout), ios)
          first = last + 1
       end do
       call put(unit, new_line('a')//'</DataArray>'//new_line('a'), ios)
