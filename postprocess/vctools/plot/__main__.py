@@ -13,7 +13,7 @@ import argparse
 import os
 import sys
 
-from .results import ResultError, contact_file, read_contact_points, read_vtu, step_files
+from .results import ResultError, check_complete, contact_file, read_contact_points, read_vtu, step_files
 from .contour import plot
 
 
@@ -31,9 +31,13 @@ def main(argv=None) -> int:
                    help="polyline drawn over the picture, e.g. a joint (repeatable; undeformed coordinates)")
     p.add_argument("-o", "--output", default=None, help="folder for the pictures (default: the result's)")
     p.add_argument("--format", choices=["png", "pdf"], default="png")
+    p.add_argument("--incomplete", action="store_true",
+                   help="plot the steps of a run that did not finish (refused by default)")
     a = p.parse_args(argv)
     try:
         files = step_files(a.result)
+        if not a.incomplete:
+            check_complete(a.result)
         if a.step < 0 or a.step > len(files):
             raise ResultError(f"{a.result}: has {len(files)} steps, no step {a.step}")
         vtu = files[a.step - 1] if a.step else files[-1]
