@@ -4,12 +4,13 @@
 !> JOB.log is created afresh through src/safe_file.f90 (a file or link of that
 !> name is removed, never followed) and every line is written with a checked
 !> write(2): the first failure is kept (`failed`, `close`) and later lines go
-!> to the screen only.
+!> to the screen only.  Control characters (from deck text) are shown escaped.
 module vemcontact_log
    use vemcontact_kinds, only: wp
    use vemcontact_clock, only: wall_time
    use vemcontact_error, only: error_t, fatal_error, err_io
    use vemcontact_safe_file, only: open_fresh, write_bytes, close_synced, io_reason
+   use vemcontact_text, only: escape_controls
    use, intrinsic :: iso_fortran_env, only: output_unit
    implicit none
    private
@@ -46,8 +47,10 @@ contains
    subroutine logger_say(self, line)
       class(logger_t), intent(inout) :: self
       character(len=*), intent(in) :: line
-      if (.not. self%quiet) write (output_unit, '(a)') line
-      if (self%opened .and. self%errno == 0) self%errno = write_bytes(self%fd, line//new_line('a'))
+      character(len=:), allocatable :: shown
+      shown = escape_controls(line)
+      if (.not. self%quiet) write (output_unit, '(a)') shown
+      if (self%opened .and. self%errno == 0) self%errno = write_bytes(self%fd, shown//new_line('a'))
    end subroutine logger_say
 
    !> One timing line: "  phase ...... 1.234 s".

@@ -14,6 +14,7 @@ program vemcontact_main
    use vemcontact_clock, only: wall_time
    use vemcontact_app_process, only: exit_process, make_directory
    use vemcontact_safe_file, only: job_lock_t, lock_job, remove_job_files
+   use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
@@ -72,7 +73,7 @@ contains
    !> Report the error on stderr and in the log, then end with its status.
    subroutine fail(err)
       type(error_t), intent(in) :: err
-      write (error_unit, '(a)') err%message
+      write (error_unit, '(a)') escape_controls(err%message)
       if (log%opened) then
          log%quiet = .true.
          call log%say(err%message)
