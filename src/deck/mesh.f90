@@ -3,7 +3,7 @@
 !> once at the end (see vemcontact_deck_finish); sets are resolved when read, so
 !> the nodes and elements they name must be defined before them, as in CalculiX.
 module vemcontact_deck_mesh
-   use vemcontact_kinds, only: wp, ip
+   use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_model, only: model_t, source_loc_t, etype_polygon, etype_quad4, etype_tri3, &
                                plane_strain, plane_stress
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, here, err_here, field, get_id, &
@@ -236,6 +236,8 @@ contains
       logical :: found, generate, ok
       integer :: kset, k, kind, kref, nmissing
       integer(ip) :: id, first, last, inc, i, idx, first_missing
+      integer(i8) :: nrange, nfound
+      character(len=24) :: cbuf
       type(item_list_t) :: line_items
       if (is_node) then
          what = 'node'
@@ -274,6 +276,31 @@ contains
             if (last < first) then
                call err_here(p, 'GENERATE range is empty: last id '//int_str(last)// &
                              ' is smaller than first id '//int_str(first))
+               cycle
+            end if
+            ! more ids in the range than defined: some are missing; they are counted
+            ! from the defined ids, never by walking a range of up to 2**31 ids
+            nrange = (int(last, i8) - first)/inc + 1
+            if (nrange > int(merge(model%nnode, model%nelem, is_node), i8)) then
+               nfound = 0
+               do k = 1, merge(model%nnode, model%nelem, is_node)
+                  if (is_node) then
+                     id = model%node_id(k)
+                  else
+                     id = model%elem_id(k)
+                  end if
+                  if (id >= first .and. id <= last .and. mod(int(id, i8) - first, int(inc, i8)) == 0) &
+                     nfound = nfound + 1
+               end do
+               ! the first missing id comes after at most nfound defined ones
+               first_missing = first
+               do while (lookup(first_missing) /= 0)
+                  first_missing = first_missing + inc
+               end do
+               write (cbuf, '(i0)') nrange - nfound
+               call err_here(p, trim(cbuf)//' of the ids '//int_str(first)//' to '//int_str(last)// &
+                             ' are not defined '//what//'s (the first is '//int_str(first_missing)//')', &
+                             what//'s must be defined before a set refers to them')
                cycle
             end if
             nmissing = 0

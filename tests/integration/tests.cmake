@@ -61,3 +61,7 @@ vc_deck_test(err_stab_fem ${VC_DECKS}/err_stab_fem.inp 1
   "err_stab_fem.inp:17: error: STABILIZATION= on FEM element 1")
 vc_deck_test(err_stab_cpe4 ${VC_DECKS}/err_stab_cpe4.inp 1
   "err_stab_cpe4.inp:17: error: STABILIZATION= on FEM element 1")
+
+# GENERATE ranges are checked before they are expanded (1..2147483647 took 20-60 s)
+vc_deck_test(err_generate_huge ${VC_DECKS}/err_generate_huge.inp 1
+  "err_generate_huge.inp:7: error: 2147483644 of the ids 1 to 2147483647 are not defined nodes [(]the first is 4[)]")
