@@ -99,7 +99,7 @@ contains
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
       character(len=:), allocatable :: tname, sname
-      logical :: found, ok, more
+      logical :: found, ok, more, continued
       integer :: kset, etype, plane, nn, k, nnod, stat
       integer(ip) :: id, nid
       call get_param(kw, 'TYPE', tname, found)
@@ -130,11 +130,16 @@ contains
          call advance(p)
          if (p%src%kind /= line_data) exit
          call split_fields(p%src%text(1:p%src%length), p%f)
+         ! a polygon's continued lines are split once at the end (splitting the
+         ! growing line after every continuation is quadratic in its length)
+         continued = .false.
          do while (p%src%text(p%src%length:p%src%length) == ',' .and. (nn == 0 .or. p%f%n < nn + 1))
             call p%src%continue_line(more)
             if (.not. more) exit
-            call split_fields(p%src%text(1:p%src%length), p%f)
+            continued = .true.
+            if (nn > 0) call split_fields(p%src%text(1:p%src%length), p%f)
          end do
+         if (continued .and. nn == 0) call split_fields(p%src%text(1:p%src%length), p%f)
          call get_id(p, 1, 'element id', id, ok)
          if (.not. ok) then
             p%element_errors = .true.
