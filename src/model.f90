@@ -9,13 +9,18 @@ module vemcontact_model
 
    public :: model_t, named_set_t, material_t, section_t, step_t
    public :: dof_value_t, dload_t, string_t, source_loc_t
-   public :: surface_t, interaction_t, contact_pair_t, contact_controls_t
-   public :: find_set, location_string
+   public :: surface_t, interaction_t, contact_pair_t, contact_controls_t, output_request_t
+   public :: find_set, location_string, output_requested, element_order, element_side
 
    !> Element topology
    integer, parameter, public :: etype_polygon = 1 !< VPE/VPS: any number of nodes
    integer, parameter, public :: etype_quad4 = 2   !< CPE4/CPS4
    integer, parameter, public :: etype_tri3 = 3    !< CPE3/CPS3
+   !> Second-order elements: corner nodes first, then one node per side
+   !> (node n+k on side k, from corner k to corner k+1), Abaqus' order
+   integer, parameter, public :: etype_polygon2 = 4 !< VPE2/VPS2: second-order polygon, 2n nodes
+   integer, parameter, public :: etype_quad8 = 5    !< CPE8/CPS8: serendipity quad
+   integer, parameter, public :: etype_tri6 = 6     !< CPE6/CPS6: quadratic triangle
    !> Plane assumption
    integer, parameter, public :: plane_strain = 1
    integer, parameter, public :: plane_stress = 2
@@ -35,6 +40,12 @@ module vemcontact_model
    !> Step procedures
    integer, parameter, public :: procedure_static = 1
    integer, parameter, public :: procedure_geostatic = 2 !< *GEOSTATIC: displacements reset to zero after it
+   !> Output request categories (output_request_t%category)
+   integer, parameter, public :: output_node = 1     !< *NODE FILE, *NODE OUTPUT, *NODE PRINT
+   integer, parameter, public :: output_element = 2  !< *EL FILE, *ELEMENT OUTPUT, *EL PRINT
+   integer, parameter, public :: output_contact = 3  !< *CONTACT FILE, *CONTACT OUTPUT, *CONTACT PRINT
+   !> TOTALS= of *NODE PRINT and *EL PRINT (output_request_t%totals)
+   integer, parameter, public :: totals_no = 0, totals_yes = 1, totals_only = 2
 
    !> A deferred-length string, for lists of names.
    type :: string_t
@@ -111,6 +122,12 @@ module vemcontact_model
    type :: interaction_t
       character(len=:), allocatable :: name   !< upper case
       real(wp) :: penalty = 0.0_wp            !< LINEAR: slope K, pressure per unit overclosure
+      !> LINEAR, CalculiX's second and third values: the tension at large clearance of its
+      !> regularised law p = K d (1/2 + atan(d/eps)/pi), eps = pi sigma_inf / K, and the
+      !> clearance factor c0 of its spring generation.  Recorded; vemcontact solves the
+      !> limit sigma_inf -> 0 (p = K max(d, 0)), see docs/deck-reference.md.
+      real(wp) :: sigma_inf = 0.0_wp
+      real(wp) :: c0 = 0.0_wp
       logical :: hard = .false.               !< PRESSURE-OVERCLOSURE=HARD
       logical :: has_behavior = .false.
       type(source_loc_t) :: loc
@@ -152,6 +169,22 @@ module vemcontact_model
       real(wp) :: overclosure_tol = 1.0e-10_wp
    end type contact_controls_t
 
+   !> One output request of a step: the result fields that a *NODE FILE, *EL FILE,
+   !> *CONTACT FILE (or Abaqus' *NODE OUTPUT, *ELEMENT OUTPUT, *CONTACT OUTPUT), *NODE PRINT,
+   !> *EL PRINT or *CONTACT PRINT selects, as vemcontact's field names (docs/deck-reference.md:
+   !> CalculiX's CDIS is COPEN and CSLIP, CSTR is CPRESS).  Requests for what vemcontact
+   !> cannot compute are left out (with a warning when the deck is read).
+   type :: output_request_t
+      integer :: category = 0                 !< output_node, output_element or output_contact
+      !> a *... PRINT request (CalculiX writes it to its .dat file; vemcontact to
+      !> JOB_print_NNNN.csv), else a result-file request (*... FILE, *... OUTPUT: VTU, HDF5, CSV)
+      logical :: print = .false.
+      character(len=:), allocatable :: set    !< NSET= or ELSET= (upper case), '' = the whole model
+      integer :: totals = totals_no           !< TOTALS= of a PRINT request
+      type(string_t), allocatable :: fields(:)  !< e.g. U, RF, S, E, CPRESS, COPEN, CSLIP
+      type(source_loc_t) :: loc
+   end type output_request_t
+
    !> One *STEP.  Loads follow CalculiX: with OP=MOD (default) a step's entries
    !> replace those of earlier steps on the same dof/element and keep the rest;
    !> OP=NEW on a keyword first removes everything of that kind from earlier steps.
@@ -164,6 +197,11 @@ module vemcontact_model
       type(dof_value_t), allocatable :: boundary(:)
       type(dof_value_t), allocatable :: cload(:)
       type(dload_t), allocatable :: dload(:)
+      !> the output requests in force in this step: those of the step, and for each
+      !> category (node, element, contact) and kind (file, print) without a request in
+      !> the step those of the step before (CalculiX: the first request of a kind in a
+      !> step replaces the earlier selection of that kind, else the earlier one applies)
+      type(output_request_t), allocatable :: outputs(:)
       type(source_loc_t) :: loc
    end type step_t
 
@@ -204,9 +242,48 @@ module vemcontact_model
       type(interaction_t), allocatable :: interactions(:)
       type(contact_pair_t), allocatable :: pairs(:)
       type(contact_controls_t) :: controls
+      !> the deck has output requests: only the fields they select are written; without
+      !> any, every field is written (output_requested)
+      logical :: has_output_requests = .false.
+      !> warnings of the deck reader, one line each ("file:line: warning: ..."), for the log
+      type(string_t), allocatable :: warnings(:)
    end type model_t
 
 contains
+
+   !> Polynomial order of an element type: 2 for the second-order types (whose
+   !> nodes are the corners, then one node per side), 1 otherwise.
+   pure integer function element_order(etype)
+      integer, intent(in) :: etype
+      select case (etype)
+      case (etype_polygon2, etype_quad8, etype_tri6)
+         element_order = 2
+      case default
+         element_order = 1
+      end select
+   end function element_order
+
+   !> Nodes of side k of element e: (corner k, corner k+1, side node or 0 for
+   !> a first-order element); the element has nsides sides (its corners).
+   pure subroutine element_side(model, e, k, abc, nsides)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: e
+      integer, intent(in) :: k
+      integer(ip), intent(out) :: abc(3)
+      integer, intent(out) :: nsides
+      integer(ip) :: p0
+      integer :: n, order
+      p0 = model%elem_ptr(e)
+      n = model%elem_ptr(e + 1) - p0
+      order = 1
+      if (allocated(model%elem_type)) order = element_order(model%elem_type(e))
+      nsides = n/order
+      abc = 0
+      if (k < 1 .or. k > nsides) return
+      abc(1) = model%elem_conn(p0 + k - 1)
+      abc(2) = model%elem_conn(p0 + mod(k, nsides))
+      if (order == 2) abc(3) = model%elem_conn(p0 + nsides + k - 1)
+   end subroutine element_side
 
    !> Index of the set called `name` (case-insensitive, caller passes upper case), 0 if absent.
    pure function find_set(sets, name) result(k)
@@ -218,6 +295,30 @@ contains
       end do
       k = 0
    end function find_set
+
+   !> Whether result field `name` (upper case, e.g. 'U', 'S', 'RF', 'CPRESS') is to be
+   !> written to the result files (VTU, HDF5) of step `istep`: always when the deck has no
+   !> output requests, else when a file request (not a PRINT) in force in the step selects it.
+   pure function output_requested(model, istep, name) result(yes)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: istep
+      character(len=*), intent(in) :: name
+      logical :: yes
+      integer :: k, j
+      yes = .not. model%has_output_requests
+      if (yes) return
+      if (.not. allocated(model%steps)) return
+      if (istep < 1 .or. istep > size(model%steps)) return
+      if (.not. allocated(model%steps(istep)%outputs)) return
+      do k = 1, size(model%steps(istep)%outputs)
+         associate (r => model%steps(istep)%outputs(k))
+            if (r%print .or. .not. allocated(r%fields)) cycle
+            do j = 1, size(r%fields)
+               if (r%fields(j)%s == name) yes = .true.
+            end do
+         end associate
+      end do
+   end function output_requested
 
    !> "file:line" for messages.
    pure function location_string(model, loc) result(s)

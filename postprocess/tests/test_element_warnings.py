@@ -2,7 +2,6 @@
 nearly incompressible plane-strain FEM sections lock (docs/stability-elements.md), the
 VEM does not.  The run still answers (exit 0); the log and the screen carry the warning
 with the file:line of the *SOLID SECTION."""
-import os
 import subprocess
 
 import pytest

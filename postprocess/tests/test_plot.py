@@ -118,3 +118,71 @@ def test_plot_draws_contact_faces(vemcontact, tmp_path):
     assert len(pts) == 17 and status.sum() > 0
     r = run_plot(pvd, "--field", "S:yy", "--deformed", "auto", "-o", str(tmp_path / "pics"))
     assert r.returncode == 0, r.stderr
+
+
+def test_colour_range_excludes_and_clips():
+    """A spike at a singular point no longer sets the colour range once excluded; a
+    percentile clip gives numpy's percentiles of what is left; the note says both."""
+    from vctools.plot.contour import colour_range
+    rng = np.random.default_rng(1)
+    pos = rng.uniform(0, 1, (1000, 2))
+    v = pos[:, 0].copy()
+    tip = 7
+    pos[tip] = (0.5, 0.5)           # the singular point, alone within 0.01 (checked below)
+    assert (np.hypot(*(pos - 0.5).T) <= 0.01).sum() == 1
+    v[tip] = 1e6
+    lo, hi, note = colour_range(v, pos)
+    assert hi == 1e6 and note == ""
+    lo, hi, note = colour_range(v, pos, exclude=[(0.5, 0.5, 0.01)])
+    rest = np.delete(v, tip)
+    assert hi == rest.max() and lo == rest.min() and "within 0.01 of (0.5, 0.5)" in note
+    lo, hi, note = colour_range(v, pos, clip=99.0, exclude=[(0.5, 0.5, 0.01)])
+    assert (lo, hi) == tuple(np.percentile(rest, [1.0, 99.0])) and "clipped at the percentiles 1 and 99" in note
+    with pytest.raises(ValueError):
+        colour_range(v, pos, clip=30.0)
+
+
+def test_overlay_follows_the_deformed_shape():
+    """A line given in undeformed coordinates is moved with the field's displacement:
+    for a displacement linear in x and y the fan-triangle interpolation is exact."""
+    from vctools.plot.contour import deformed_polyline
+    from vctools.plot.results import PolyResult
+    xs, ys = np.meshgrid(np.linspace(0, 2, 5), np.linspace(0, 1, 3))
+    pts = np.column_stack([xs.ravel(), ys.ravel()])
+    polys = [np.array([j * 5 + i, j * 5 + i + 1, (j + 1) * 5 + i + 1, (j + 1) * 5 + i]) for j in range(2) for i in range(4)]
+    u = np.column_stack([0.01 * pts[:, 0] + 0.02 * pts[:, 1], -0.03 * pts[:, 0], np.zeros(len(pts))])
+    res = PolyResult(points=pts, polygons=polys, point_data={"U": u}, cell_data={}, path="mem")
+    line = [[0.0, 0.5], [2.0, 0.5], [2.0, 1.0]]     # along the middle and up the right edge
+    got = deformed_polyline(res, line, 10.0)
+    base = deformed_polyline(res, line, 0.0)
+    assert np.allclose(base, line)
+    # the sampled undeformed points p (40 per segment) moved by 10 u(p)
+    t = np.linspace(0, 1, 41)
+    p = np.vstack([np.outer(1 - t, line[0]) + np.outer(t, line[1]), np.outer(1 - t[1:], line[1]) + np.outer(t[1:], line[2])])
+    up = np.column_stack([0.01 * p[:, 0] + 0.02 * p[:, 1], -0.03 * p[:, 0]])
+    assert np.allclose(got, p + 10.0 * up, atol=1e-12)
+
+
+def test_step_name_units_and_clipping_on_the_command_line(block_result, tmp_path):
+    from vctools.plot.results import step_label
+    assert step_label(str(block_result / "block_selfweight_0001.vtu")) == "step 1, Step-1"
+    r = run_plot(str(block_result / "block_selfweight.pvd"), "--field", "S3", "--units", "m,Pa", "--deformed", "auto",
+                 "--clip", "99", "--exclude", "0,0", "--line", "0,0.5,1,0.5", "-o", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    assert os.path.getsize(r.stdout.split()[0]) > 10000
+    one_line_error(run_plot(str(block_result / "block_selfweight.pvd"), "--exclude", "1,2,-3"), "--exclude")
+
+
+def test_meshing_progress_only_on_a_terminal():
+    import io
+    from vctools.mesh.progress import Progress
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+    tty, pipe = Tty(), io.StringIO()
+    for s in (tty, pipe):
+        p = Progress("meshing: Lloyd iteration", after=0.0, stream=s)
+        p.update(3, 21)
+        p.done()
+    assert tty.getvalue() == "\r  meshing: Lloyd iteration 3/21 (0 s)\n" and pipe.getvalue() == ""

@@ -9,7 +9,6 @@ import csv
 import fcntl
 import os
 import random
-import shutil
 import subprocess
 import time
 import xml.etree.ElementTree as ET
@@ -37,7 +36,7 @@ def h5_state(path):
             for name in STEP_FIELDS:
                 assert g[name][...].size > 0, f"{path}: /steps/{key}/{name} empty"
             if "contact" in g:
-                for pk, pg in g["contact"].items():
+                for pg in g["contact"].values():
                     for name in pg:
                         pg[name][...]
             steps.append(int(key))

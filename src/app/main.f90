@@ -26,7 +26,7 @@ program vemcontact_main
    type(run_options_t) :: opts
    type(job_lock_t) :: lock
    real(wp) :: t0, tstart
-   integer :: nremoved
+   integer :: nremoved, iw
 
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
@@ -55,12 +55,17 @@ program vemcontact_main
    t0 = wall_time()
    call read_deck(cli%deck, model, error)
    if (allocated(error)) call fail(error)
+   ! valid input that is partly ignored (output variables vemcontact does not compute, ...)
+   do iw = 1, size(model%warnings)
+      call log%say(model%warnings(iw)%s)
+   end do
    call log%phase('read', wall_time() - t0)
 
    opts%out_dir = cli%out_dir
    opts%job = cli%job
    opts%ordering = cli%ordering
    opts%write_matrix = cli%write_matrix
+   opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)
    call log%phase('total', wall_time() - tstart)

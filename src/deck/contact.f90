@@ -8,9 +8,10 @@
 module vemcontact_deck_contact
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, surface_t, interaction_t, contact_pair_t, source_loc_t, &
-                               surface_element, surface_node, pair_node_to_surface, pair_surface_to_surface
+                               surface_element, surface_node, pair_node_to_surface, pair_surface_to_surface, &
+                               element_order
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, pair_ref_t, here, err_here, err_at, &
-                                    field, get_real, push_item, loc_str
+                                    warn_here, field, get_real, push_item, loc_str
    use vemcontact_deck_loads, only: field_nodes, field_elems
    use vemcontact_deck_lines, only: advance, skip_data
    use vemcontact_deck_source, only: line_data
@@ -26,8 +27,6 @@ module vemcontact_deck_contact
 
    character(len=*), parameter :: side_help = 'sides are S1, S2, ...: side Sk runs from node k to node k+1 '// &
                                               'of the element (S1 = nodes 1-2, the last side back to node 1)'
-   character(len=*), parameter :: linear_only = 'vemcontact uses p = K * overclosure with no tension at '// &
-                                                'positive clearance'
 
 contains
 
@@ -127,7 +126,7 @@ contains
             ok = .true.
             do k = 1, int(elems%n)
                e = elems%a(k)
-               nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
+               nn = (model%elem_ptr(e + 1) - model%elem_ptr(e))/element_order(model%elem_type(e))
                if (side > nn) then
                   call err_here(p, 'element '//int_str(model%elem_id(e))//' has '//int_str(nn)// &
                                 ' sides, so there is no side '//lab, side_help)
@@ -246,8 +245,9 @@ contains
    !> PRESSURE-OVERCLOSURE=HARD (Abaqus' meaning: no overclosure, the pressure is a
    !> Lagrange multiplier) takes no data line.
    !> vemcontact's law is p = K * overclosure, zero at positive clearance: CalculiX's
-   !> tension at large clearances (sigma_inf) and its spring-generation clearance (c0)
-   !> have no counterpart, so only 0 or blank is accepted for them.
+   !> regularised law with the tension sigma_inf at large clearances in the limit
+   !> sigma_inf -> 0.  sigma_inf and c0 (CalculiX's spring-generation clearance factor)
+   !> are recorded; a positive sigma_inf gets a warning that its tension is not modelled.
    subroutine read_behavior(p, model, kw)
       type(deck_parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: model
@@ -311,23 +311,31 @@ contains
                           'the element size')
             ok_k = .false.
          end if
-         if (ok_s .and. abs(sinf) > 0.0_wp) then
-            call err_here(p, linear_only//'; remove sigma_inf ('//field(p, 2)//')', &
-                          'CalculiX''s sigma_inf is the tension at large clearances of its node-to-face '// &
-                          'penalty contact; leave the field blank or 0')
+         if (ok_s .and. sinf < 0.0_wp) then
+            call err_here(p, 'sigma_inf = '//field(p, 2)//' must not be negative', &
+                          'sigma_inf is CalculiX''s tension at large clearance (> 0, typically 0.25 % of '// &
+                          'the largest stress expected); leave it blank or 0 for none')
             ok_s = .false.
          end if
-         if (ok_c .and. abs(c0) > 0.0_wp) then
-            call err_here(p, linear_only//'; remove c0 ('//field(p, 3)//')', &
-                          'CalculiX''s c0 sets the clearance up to which its contact springs act; '// &
-                          'leave the field blank or 0')
+         if (ok_c .and. c0 < 0.0_wp) then
+            call err_here(p, 'c0 = '//field(p, 3)//' must not be negative', &
+                          'c0 is CalculiX''s factor of the clearance up to which contact springs are made')
             ok_c = .false.
+         end if
+         if (ok_k .and. ok_s .and. sinf > 0.0_wp) then
+            call warn_here(p, 'sigma_inf = '//field(p, 2)//' (CalculiX''s tension at clearance) is not '// &
+                           'modelled: the pressure is K * overclosure, zero at clearance, so pressures '// &
+                           'differ from CalculiX''s by at most sigma_inf')
          end if
          ok = ok_k .and. ok_s .and. ok_c
       end if
       if (p%cur_inter > 0 .and. .not. dup) then
          ! after an error the interaction counts as having a behavior: it is not reported again as missing
-         if (ok) model%interactions(p%cur_inter)%penalty = k
+         if (ok) then
+            model%interactions(p%cur_inter)%penalty = k
+            model%interactions(p%cur_inter)%sigma_inf = sinf
+            model%interactions(p%cur_inter)%c0 = c0
+         end if
          model%interactions(p%cur_inter)%has_behavior = .true.
       end if
       first = .true.

@@ -6,7 +6,7 @@
 module vemcontact_deck_loads
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure, &
-                               dload_hydrostatic, procedure_static, procedure_geostatic
+                               dload_hydrostatic, procedure_static, procedure_geostatic, element_order
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, here, &
                                     err_here, err_at, field, get_int, get_real, push_item, push_dof, &
                                     push_dload, node_index, elem_index, get_set, set_suggestion, &
@@ -16,6 +16,7 @@ module vemcontact_deck_loads
    use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param, has_param, to_upper, &
                                      squeeze, int_str
    use vemcontact_deck_numbers, only: parse_int, num_ok
+   use vemcontact_deck_outputs, only: carry_outputs
    implicit none
    private
 
@@ -377,11 +378,12 @@ contains
          sides_exist = .true.
          do j = 1, elems%n
             e = elems%a(j)
-            nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
+            nn = (model%elem_ptr(e + 1) - model%elem_ptr(e))/element_order(model%elem_type(e))
             if (k > nn) then
                call err_here(p, 'element '//int_str(model%elem_id(e))//' has '//int_str(nn)// &
                              ' sides, so there is no side '//lab, &
-                             'side k runs from node k to node k+1 of the element')
+                             'side k runs from node k to node k+1 of the element (corner k to corner k+1 '// &
+                             'of a second-order element)')
                sides_exist = .false.
                return
             end if
@@ -509,6 +511,7 @@ contains
       p%nstep = p%nstep + 1
       call acc_to_step(p%cur, t(p%nstep))
       t(p%nstep)%loc = p%step_loc
+      if (p%nstep > 1) call carry_outputs(t(p%nstep - 1), t(p%nstep), p%cur%out_seen)
       call move_alloc(t, model%steps)
       p%in_step = .false.
       p%cur = step_acc_t()
@@ -525,6 +528,7 @@ contains
       call move_alloc(a%boundary, b%boundary)
       call move_alloc(a%cload, b%cload)
       call move_alloc(a%dload, b%dload)
+      call move_alloc(a%outputs, b%outputs)
       b%loc = a%loc
    end subroutine move_step
 
@@ -541,5 +545,7 @@ contains
       if (acc%nb > 0) s%boundary = acc%boundary(1:acc%nb)
       if (acc%nc > 0) s%cload = acc%cload(1:acc%nc)
       if (acc%nd > 0) s%dload = acc%dload(1:acc%nd)
+      allocate (s%outputs(acc%nout))
+      if (acc%nout > 0) s%outputs = acc%outputs(1:acc%nout)
    end subroutine acc_to_step
 end module vemcontact_deck_loads

@@ -5,6 +5,7 @@
 module vemcontact_deck_mesh
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_model, only: model_t, source_loc_t, etype_polygon, etype_quad4, etype_tri3, &
+                               etype_polygon2, etype_quad8, etype_tri6, &
                                plane_strain, plane_stress
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, here, err_here, field, get_id, &
                                     get_int, get_real, push_item, node_index, elem_index, get_set, &
@@ -116,9 +117,22 @@ contains
          etype = etype_tri3; plane = plane_strain; nn = 3
       case ('CPS3')
          etype = etype_tri3; plane = plane_stress; nn = 3
+      case ('VPE2')
+         etype = etype_polygon2; plane = plane_strain; nn = 0
+      case ('VPS2')
+         etype = etype_polygon2; plane = plane_stress; nn = 0
+      case ('CPE8')
+         etype = etype_quad8; plane = plane_strain; nn = 8
+      case ('CPS8')
+         etype = etype_quad8; plane = plane_stress; nn = 8
+      case ('CPE6')
+         etype = etype_tri6; plane = plane_strain; nn = 6
+      case ('CPS6')
+         etype = etype_tri6; plane = plane_stress; nn = 6
       case default
          call err_here(p, 'unsupported element type '//tname, &
-                       'supported types are VPE, VPS (polygons), CPE4, CPS4, CPE3, CPS3')
+                       'supported types are VPE, VPS (polygons), VPE2, VPS2 (second-order polygons), '// &
+                       'CPE4, CPS4, CPE3, CPS3, CPE8, CPS8, CPE6, CPS6')
          p%element_errors = .true.
          call skip_data(p)
          return
@@ -154,6 +168,12 @@ contains
          else if (nn == 0 .and. nnod < 3) then
             call err_here(p, 'element '//int_str(id)//' of type '//tname// &
                           ' needs at least 3 nodes, found '//int_str(nnod))
+            p%element_errors = .true.
+            cycle
+         else if (etype == etype_polygon2 .and. (nnod < 6 .or. mod(nnod, 2) /= 0)) then
+            call err_here(p, 'element '//int_str(id)//' of type '//tname// &
+                          ' needs an even number of nodes, at least 6 (n corners, then n side nodes), found '// &
+                          int_str(nnod))
             p%element_errors = .true.
             cycle
          end if

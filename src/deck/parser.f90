@@ -3,7 +3,7 @@
 !> reads the data lines that follow.  After an error the parser goes on with the
 !> next line it can make sense of, so one run reports all problems of a deck.
 module vemcontact_deck_parser
-   use vemcontact_model, only: model_t
+   use vemcontact_model, only: model_t, output_node, output_element, output_contact
    use vemcontact_deck_state, only: deck_parser_t, err_here
    use vemcontact_deck_source, only: line_keyword, line_data, line_eof
    use vemcontact_deck_fields, only: keyword_line_t, parse_keyword_line
@@ -13,13 +13,17 @@ module vemcontact_deck_parser
                                        kw_material, kw_elastic, kw_density, kw_solid_section, &
                                        kw_boundary, kw_cload, kw_dload, kw_step, kw_static, kw_end_step, &
                                        kw_surface, kw_surface_interaction, kw_surface_behavior, &
-                                       kw_contact_pair, kw_contact_controls, kw_geostatic, kw_dsload
+                                       kw_contact_pair, kw_contact_controls, kw_geostatic, kw_dsload, &
+                                       kw_node_file, kw_el_file, kw_contact_file, kw_node_print, kw_el_print, &
+                                       kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
+                                       kw_output
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
    use vemcontact_deck_loads, only: read_heading, read_boundary, read_cload, read_dload, start_step, &
                                     read_procedure, end_step
    use vemcontact_deck_surface_loads, only: read_dsload
+   use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
                                       read_contact_pair, read_controls
    implicit none
@@ -122,6 +126,15 @@ contains
          case (kw_contact_controls)
             call read_controls(p, model, kw)
             call no_data(p, '*CONTACT CONTROLS')
+         case (kw_node_file, kw_node_output, kw_node_print)
+            call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_node, id == kw_node_print)
+         case (kw_el_file, kw_element_output, kw_el_print)
+            call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_element, id == kw_el_print)
+         case (kw_contact_file, kw_contact_output, kw_contact_print)
+            call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_contact, &
+                                     id == kw_contact_print)
+         case (kw_output)
+            call read_output(p, model, kw)
          case (kw_end_step)
             call end_step(p, model)
             call no_data(p, '*END STEP')

@@ -20,7 +20,10 @@ module vemcontact_deck_registry
                                  kw_cload = 12, kw_dload = 13, kw_step = 14, kw_static = 15, &
                                  kw_end_step = 16, kw_surface = 17, kw_surface_interaction = 18, &
                                  kw_surface_behavior = 19, kw_contact_pair = 20, kw_contact_controls = 21, &
-                                 kw_geostatic = 22, kw_dsload = 23
+                                 kw_geostatic = 22, kw_dsload = 23, kw_node_file = 24, kw_el_file = 25, &
+                                 kw_contact_file = 26, kw_node_print = 27, kw_el_print = 28, &
+                                 kw_contact_print = 29, kw_node_output = 30, kw_element_output = 31, &
+                                 kw_contact_output = 32, kw_output = 33
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -52,7 +55,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(23) = [ &
+   type(keyword_spec_t), parameter :: keywords(33) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -75,9 +78,19 @@ module vemcontact_deck_registry
                                       keyword_spec_t('CONTACT PAIR', ctx_model, data_required), &
                                       keyword_spec_t('CONTACT CONTROLS', ctx_model, data_none), &
                                       keyword_spec_t('GEOSTATIC', ctx_step, data_optional), &
-                                      keyword_spec_t('DSLOAD', ctx_step, data_optional)]
+                                      keyword_spec_t('DSLOAD', ctx_step, data_optional), &
+                                      keyword_spec_t('NODE FILE', ctx_step, data_optional), &
+                                      keyword_spec_t('EL FILE', ctx_step, data_optional), &
+                                      keyword_spec_t('CONTACT FILE', ctx_step, data_optional), &
+                                      keyword_spec_t('NODE PRINT', ctx_step, data_optional), &
+                                      keyword_spec_t('EL PRINT', ctx_step, data_optional), &
+                                      keyword_spec_t('CONTACT PRINT', ctx_step, data_optional), &
+                                      keyword_spec_t('NODE OUTPUT', ctx_step, data_optional), &
+                                      keyword_spec_t('ELEMENT OUTPUT', ctx_step, data_optional), &
+                                      keyword_spec_t('CONTACT OUTPUT', ctx_step, data_optional), &
+                                      keyword_spec_t('OUTPUT', ctx_step, data_none)]
 
-   type(param_spec_t), parameter :: params(33) = [ &
+   type(param_spec_t), parameter :: params(110) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -114,16 +127,94 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_contact_controls, 'MAXIT', par_value, .false., val_int, ''), &
                                     param_spec_t(kw_contact_controls, 'TOLERANCE', par_value, .false., val_real, ''), &
                                    param_spec_t(kw_contact_controls, 'STIFFNESS SCALE FACTOR', par_value, .false., &
-                                                val_real, '')]
+                                                val_real, ''), &
+                                    ! accepted without effect (docs/deck-reference.md)
+                                    param_spec_t(kw_nset, 'INTERNAL', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_nset, 'UNSORTED', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_elset, 'INTERNAL', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_elset, 'UNSORTED', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_static, 'DIRECT', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_static, 'TIME RESET', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_static, 'TOTAL TIME AT START', par_value, .false., val_real, ''), &
+                                    param_spec_t(kw_step, 'AMPLITUDE', par_value, .false., val_name, 'RAMP STEP'), &
+                                    param_spec_t(kw_step, 'INCF', par_value, .false., val_int, ''), &
+                                    ! output requests (src/deck/outputs.f90); FREQUENCY is checked by the handler
+                                    param_spec_t(kw_node_file, 'NSET', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_file, 'GLOBAL', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_node_file, 'OUTPUT', par_value, .false., val_name, '2D 3D'), &
+                                    param_spec_t(kw_node_file, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_file, 'FREQUENCYF', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_file, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_file, 'LAST ITERATIONS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_node_file, 'CONTACT ELEMENTS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_node_output, 'NSET', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_output, 'GLOBAL', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_node_output, 'OUTPUT', par_value, .false., val_name, '2D 3D'), &
+                                    param_spec_t(kw_node_output, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_output, 'FREQUENCYF', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_output, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_output, 'LAST ITERATIONS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_node_output, 'CONTACT ELEMENTS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_el_file, 'NSET', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_el_file, 'GLOBAL', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_el_file, 'OUTPUT', par_value, .false., val_name, '2D 3D'), &
+                                    param_spec_t(kw_el_file, 'SECTION FORCES', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_el_file, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_el_file, 'FREQUENCYF', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_el_file, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_el_file, 'LAST ITERATIONS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_el_file, 'CONTACT ELEMENTS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_element_output, 'ELSET', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_element_output, 'GLOBAL', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_element_output, 'OUTPUT', par_value, .false., val_name, '2D 3D'), &
+                                    param_spec_t(kw_element_output, 'SECTION FORCES', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_element_output, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_element_output, 'FREQUENCYF', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_element_output, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_element_output, 'LAST ITERATIONS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_element_output, 'CONTACT ELEMENTS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_element_output, 'POSITION', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL'), &
+                                    param_spec_t(kw_element_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL'), &
+                                    param_spec_t(kw_contact_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL'), &
+                                    param_spec_t(kw_contact_file, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_file, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_file, 'LAST ITERATIONS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_file, 'CONTACT ELEMENTS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_output, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_output, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_output, 'LAST ITERATIONS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_output, 'CONTACT ELEMENTS', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_node_print, 'NSET', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_el_print, 'ELSET', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_node_print, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_print, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_print, 'TOTALS', par_value, .false., val_name, 'YES ONLY NO'), &
+                                    param_spec_t(kw_el_print, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_el_print, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_el_print, 'TOTALS', par_value, .false., val_name, 'YES ONLY NO'), &
+                                    param_spec_t(kw_contact_print, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_print, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_print, 'TOTALS', par_value, .false., val_name, 'YES ONLY NO'), &
+                                    param_spec_t(kw_node_print, 'FREQUENCYF', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_node_print, 'GLOBAL', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_el_print, 'FREQUENCYF', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_el_print, 'GLOBAL', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_output, 'FIELD', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_output, 'HISTORY', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_output, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_output, 'FREQUENCYF', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_output, 'TIME POINTS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_output, 'NUMBER INTERVAL', par_value, .false., val_int, ''), &
+                                    param_spec_t(kw_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(37) = [character(len=24) :: &
-                                   'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTACTPRINT', 'CONTROLS', &
-                                   'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', 'ELPRINT', &
-                                   'ELFILE', 'VISCO', 'EQUATION', 'EXPANSION', 'FILM', 'FREQUENCY', &
+   character(len=24), parameter :: calculix_only(29) = [character(len=24) :: &
+                                   'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
+                                   'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', &
+                                   'VISCO', 'EQUATION', 'EXPANSION', 'FILM', 'FREQUENCY', &
                                    'FRICTION', 'HEATTRANSFER', 'INITIALCONDITIONS', 'KINEMATIC', &
-                                   'MPC', 'NODEFILE', 'NODEPRINT', 'NODEOUTPUT', 'ELEMENTOUTPUT', &
-                                   'ORIENTATION', 'OUTPUT', 'PLASTIC', 'RESTART', 'SHELLSECTION', &
+                                   'MPC', 'ORIENTATION', 'PLASTIC', 'RESTART', 'SHELLSECTION', &
                                    'SPECIFICHEAT', &
                                    'TEMPERATURE', 'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
 

@@ -7,7 +7,7 @@
 module vemcontact_deck_state
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, source_loc_t, named_set_t, dof_value_t, dload_t, &
-                               find_set, procedure_static
+                               find_set, procedure_static, string_t, output_request_t
    use vemcontact_deck_source, only: deck_source_t
    use vemcontact_deck_diagnostics, only: diag_t
    use vemcontact_deck_fields, only: field_list_t, edit_distance, to_upper, squeeze
@@ -18,7 +18,7 @@ module vemcontact_deck_state
    private
 
    public :: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, pair_ref_t
-   public :: here, err_here, err_at, loc_str, field, get_int, get_id, get_real
+   public :: here, err_here, err_at, warn_here, loc_str, field, get_int, get_id, get_real
    public :: push_item, push_dof, push_dload, node_index, elem_index
    public :: get_set, set_suggestion, ref_kind, tidy_items
 
@@ -39,6 +39,10 @@ module vemcontact_deck_state
       logical :: bnew = .false., cnew = .false., dnew = .false.  !< OP=NEW seen
       integer :: procedure = procedure_static
       character(len=:), allocatable :: name
+      type(output_request_t), allocatable :: outputs(:)
+      integer :: nout = 0
+      !> an output request of (category, 1 = file / 2 = print) was given in this step
+      logical :: out_seen(3, 2) = .false.
    end type step_acc_t
 
    !> A *CONTACT PAIR data line; the names are resolved once the whole deck is read.
@@ -77,6 +81,8 @@ module vemcontact_deck_state
       type(pair_ref_t), allocatable :: pair_refs(:)
       type(source_loc_t) :: controls_loc      !< the *CONTACT CONTROLS line, file 0 if none yet
       integer :: nkeyword = 0
+      !> warnings (valid input that is partly ignored), one line each, for model%warnings
+      type(string_t), allocatable :: warnings(:)
    end type deck_parser_t
 
 contains
@@ -95,6 +101,16 @@ contains
       character(len=*), intent(in), optional :: help
       call p%diag%report(p%src%path(), p%src%line, message, p%src%text(1:p%src%length), help)
    end subroutine err_here
+
+   !> Record a warning at the current line: "file:line: warning: message".
+   subroutine warn_here(p, message)
+      type(deck_parser_t), intent(inout) :: p
+      character(len=*), intent(in) :: message
+      character(len=16) :: buf
+      if (.not. allocated(p%warnings)) allocate (p%warnings(0))
+      write (buf, '(i0)') p%src%line
+      p%warnings = [p%warnings, string_t(p%src%path()//':'//trim(buf)//': warning: '//message)]
+   end subroutine warn_here
 
    !> Report an error at an earlier location, quoting that line.
    subroutine err_at(p, loc, message, help)

@@ -19,7 +19,7 @@
 module vemcontact_output_hdf5
    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_null_ptr, c_char, c_int, c_null_char
    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5lexists_f, h5fcreate_f, h5fclose_f, &
-                   h5fflush_f, h5ldelete_f, h5gcreate_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
+                   h5fflush_f, h5ldelete_f, h5gcreate_f, h5gopen_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
                    h5sclose_f, h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, &
                    h5aclose_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
                    h5kind_to_type, H5F_ACC_TRUNC_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, &
@@ -27,7 +27,8 @@ module vemcontact_output_hdf5
                    H5_REAL_KIND, H5_INTEGER_KIND
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
-   use vemcontact_model, only: model_t
+   use vemcontact_model, only: model_t, string_t
+   use vemcontact_output_selection, only: field_selection_t
    use vemcontact_safe_file, only: create_temporary, publish_file, remove_file
    implicit none
    private
@@ -55,6 +56,8 @@ module vemcontact_output_hdf5
       procedure :: write_contact => h5_write_contact
       procedure :: write_iterations => h5_write_iterations
       procedure :: discard_step => h5_discard_step
+      procedure :: write_labels => h5_write_labels
+      procedure :: write_results => h5_write_results
       procedure :: close => h5_close
       procedure :: discard => h5_discard
       procedure :: is_open => h5_is_open
@@ -167,8 +170,9 @@ contains
    end function mesh_arrays_fit
 
    !> Write /steps/NNNN (index zero-padded to 4 digits, wider beyond 9999) with
-   !> attributes name and time and datasets U, S_element, S_node; then flush.
-   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error)
+   !> attributes name and time and datasets U, S_element, S_node (with `sel`: those
+   !> selected); then flush.
+   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error, sel)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
       character(len=*), intent(in) :: name
@@ -177,11 +181,14 @@ contains
       real(wp), intent(in) :: s_elem(:, :)   !< (4, nelem)
       real(wp), intent(in) :: s_node(:, :)   !< (4, nnode)
       type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
       integer(hid_t) :: grp
       integer :: hdferr
 
+      if (present(sel)) w = sel
       if (.not. check_open(self, 'write_step', error)) return
       if (size(u, 1) /= 2 .or. size(s_elem, 1) /= 4 .or. size(s_node, 1) /= 4 &
           .or. size(s_node, 2) /= size(u, 2) .or. self%nnode < 0 &
@@ -204,10 +211,10 @@ contains
       if (failed(self, hdferr, 'creating group '//gname, error)) return
       call put_string_attribute(self, grp, 'name', name, error)
       if (.not. allocated(error)) call put_real_attribute(self, grp, 'time', time, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'U', shape(u, hsize_t), u, error)
-      if (.not. allocated(error)) &
+      if (.not. allocated(error) .and. w%u) call put_real(self, grp, 'U', shape(u, hsize_t), u, error)
+      if (.not. allocated(error) .and. w%s) &
          call put_real(self, grp, 'S_element', shape(s_elem, hsize_t), s_elem, error)
-      if (.not. allocated(error)) &
+      if (.not. allocated(error) .and. w%s) &
          call put_real(self, grp, 'S_node', shape(s_node, hsize_t), s_node, error)
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
@@ -217,19 +224,23 @@ contains
    end subroutine h5_write_step
 
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
-   !> undeformed coordinates, COPEN, CPRESS, CSLIP and STATUS (1 closed, 0 open); then flush.
-   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error)
+   !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CNAREA
+   !> and STATUS (1 closed, 0 open); then flush.
+   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
       real(wp), intent(in) :: x(:, :), copen(:), cpress(:), cslip(:), cnarea(:)
       integer, intent(in) :: status(:)
       type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
       integer(hid_t) :: grp
       integer(ip), allocatable :: st(:)
       integer :: hdferr
+      if (present(sel)) w = sel
       if (.not. check_open(self, 'write_contact', error)) return
       call contact_group(self, istep, gname, error)
       if (allocated(error)) return
@@ -240,9 +251,12 @@ contains
       st = int(status, ip)
       call put_int(self, grp, 'node_ids', shape(node_id, hsize_t), node_id, error)
       if (.not. allocated(error)) call put_real(self, grp, 'coordinates', shape(x, hsize_t), x, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
+      if (.not. allocated(error) .and. w%copen) &
+         call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
+      if (.not. allocated(error) .and. w%cpress) &
+         call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
+      if (.not. allocated(error) .and. w%cslip) &
+         call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
       if (.not. allocated(error)) call put_real(self, grp, 'CNAREA', shape(cnarea, hsize_t), cnarea, error)
       if (.not. allocated(error)) call put_int(self, grp, 'STATUS', shape(st, hsize_t), st, error)
       call h5gclose_f(grp, hdferr)
@@ -290,6 +304,113 @@ contains
       call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
       if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_iterations
+
+   !> Add to /mesh (after write_mesh) the labels of the elements: element_set
+   !> (index into element_set_names, the set of the element's *SOLID SECTION, 1-based,
+   !> 0 = none), element_part (connected body, 1-based), and the names of all
+   !> element sets and materials in deck order (material ids are element_material).
+   subroutine h5_write_labels(self, model, elem_set, elem_part, error)
+      class(h5_writer_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: elem_set(:), elem_part(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(string_t), allocatable :: names(:)
+      integer(hid_t) :: grp
+      integer :: hdferr, k
+      if (.not. check_open(self, 'write_labels', error)) return
+      if (self%nelem < 0 .or. size(elem_set) /= self%nelem .or. size(elem_part) /= self%nelem) then
+         call fatal_error(error, 'write_labels: array sizes do not match the mesh written ('// &
+                          self%path//')', err_internal)
+         return
+      end if
+      call h5gopen_f(self%file, '/mesh', grp, hdferr)
+      if (failed(self, hdferr, 'opening group /mesh', error)) return
+      call put_int(self, grp, 'element_set', shape(elem_set, hsize_t), elem_set, error)
+      if (.not. allocated(error)) &
+         call put_int(self, grp, 'element_part', shape(elem_part, hsize_t), elem_part, error)
+      ! filled one by one: gfortran 12 loses deferred-length components in an
+      ! implied-do array constructor of derived type
+      allocate (names(0))
+      if (allocated(model%elsets)) then
+         deallocate (names)
+         allocate (names(size(model%elsets)))
+         do k = 1, size(model%elsets)
+            names(k)%s = model%elsets(k)%name
+         end do
+      end if
+      if (.not. allocated(error)) call put_strings(self, grp, 'element_set_names', names, error)
+      deallocate (names)
+      allocate (names(0))
+      if (allocated(model%materials)) then
+         deallocate (names)
+         allocate (names(size(model%materials)))
+         do k = 1, size(model%materials)
+            names(k)%s = model%materials(k)%name
+         end do
+      end if
+      if (.not. allocated(error)) call put_strings(self, grp, 'material_names', names, error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group /mesh', error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing', error)) return
+   end subroutine h5_write_labels
+
+   !> Add to /steps/NNNN (after write_step): strains E_element (4, nelem) and
+   !> E_node (4, nnode), reaction forces RF (2, nnode), RF_total (2) over all
+   !> nodes, and RF_sets/names, RF_sets/RF (2, nsets): the totals over the
+   !> constrained node sets (with `sel`: E and RF as selected); then flush.
+   subroutine h5_write_results(self, istep, e_elem, e_node, rf, set_names, set_rf, error, sel)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep
+      real(wp), intent(in) :: e_elem(:, :), e_node(:, :), rf(:, :), set_rf(:, :)
+      type(string_t), intent(in) :: set_names(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
+      character(len=:), allocatable :: gname
+      character(len=24) :: buf
+      integer(hid_t) :: grp, sub
+      integer :: hdferr
+      logical :: bad
+      if (present(sel)) w = sel
+      if (.not. check_open(self, 'write_results', error)) return
+      if (size(e_elem, 1) /= 4 .or. size(e_elem, 2) /= self%nelem .or. size(e_node, 1) /= 4 &
+          .or. size(e_node, 2) /= self%nnode .or. size(rf, 1) /= 2 .or. size(rf, 2) /= self%nnode &
+          .or. size(set_rf, 1) /= 2 .or. size(set_rf, 2) /= size(set_names)) then
+         call fatal_error(error, 'write_results: array shapes do not match the mesh written ('// &
+                          self%path//')', err_internal)
+         return
+      end if
+      if (istep <= 9999) then
+         write (buf, '(i4.4)') istep
+      else
+         write (buf, '(i0)') istep
+      end if
+      gname = '/steps/'//trim(buf)
+      call h5gopen_f(self%file, gname, grp, hdferr)
+      if (failed(self, hdferr, 'opening group '//gname, error)) return
+      if (w%e) call put_real(self, grp, 'E_element', shape(e_elem, hsize_t), e_elem, error)
+      if (.not. allocated(error) .and. w%e) &
+         call put_real(self, grp, 'E_node', shape(e_node, hsize_t), e_node, error)
+      if (.not. allocated(error) .and. w%rf) call put_real(self, grp, 'RF', shape(rf, hsize_t), rf, error)
+      if (.not. allocated(error) .and. w%rf) &
+         call put_real(self, grp, 'RF_total', [2_hsize_t], sum(rf, dim=2), error)
+      if (.not. allocated(error) .and. w%rf) then
+         call h5gcreate_f(grp, 'RF_sets', sub, hdferr)
+         if (.not. failed(self, hdferr, 'creating group '//gname//'/RF_sets', error)) then
+            call put_strings(self, sub, 'names', set_names, error)
+            if (.not. allocated(error)) call put_real(self, sub, 'RF', shape(set_rf, hsize_t), set_rf, error)
+            call h5gclose_f(sub, hdferr)
+            if (.not. allocated(error)) bad = failed(self, hdferr, 'closing group '//gname//'/RF_sets', error)
+         end if
+      end if
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group '//gname, error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing after '//gname, error)) return
+   end subroutine h5_write_results
 
    !> The name of /steps/NNNN/contact, created when it does not exist yet.
    subroutine contact_group(self, istep, gname, error)
@@ -515,6 +636,47 @@ contains
       call put_dataset(self, loc, name, H5T_STD_I64LE, h5kind_to_type(i8, H5_INTEGER_KIND), dims, &
                        buf, error)
    end subroutine put_i8
+
+   !> 1-D dataset of fixed-length, null-padded ASCII strings, as long as the
+   !> longest value (h5py returns `bytes`).
+   subroutine put_strings(self, loc, name, values, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      type(string_t), intent(in) :: values(:)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=1), allocatable, target :: buf(:, :)
+      integer(hid_t) :: stype
+      type(c_ptr) :: p
+      integer :: hdferr, ignore, k, j, width
+      width = 1
+      do k = 1, size(values)
+         width = max(width, len(values(k)%s))
+      end do
+      allocate (buf(width, size(values)))
+      buf = achar(0)
+      do k = 1, size(values)
+         do j = 1, len(values(k)%s)
+            buf(j, k) = values(k)%s(j:j)
+         end do
+      end do
+      p = c_null_ptr
+      if (size(values) > 0) p = c_loc(buf(1, 1))
+      call h5tcopy_f(H5T_C_S1, stype, hdferr)
+      if (failed(self, hdferr, 'creating the string type of '//name, error)) return
+      call h5tset_size_f(stype, int(width, size_t), hdferr)
+      if (.not. failed(self, hdferr, 'sizing the string type of '//name, error)) then
+         call h5tset_strpad_f(stype, H5T_STR_NULLPAD_F, hdferr)
+         if (.not. failed(self, hdferr, 'padding the string type of '//name, error)) &
+            call put_dataset(self, loc, name, stype, stype, [size(values, kind=hsize_t)], p, error)
+      end if
+      if (allocated(error)) then
+         call h5tclose_f(stype, ignore)
+         return
+      end if
+      call h5tclose_f(stype, hdferr)
+      if (failed(self, hdferr, 'closing the string type of '//name, error)) return
+   end subroutine put_strings
 
    !> Scalar attribute of `file_type` from `buf` of `mem_type`.
    subroutine put_attribute(self, loc, name, file_type, mem_type, buf, error)

@@ -9,6 +9,7 @@ module vemcontact_output_pvd
    use vemcontact_model, only: string_t
    use vemcontact_safe_file, only: safe_file_t
    use vemcontact_path, only: dirname
+   use vemcontact_output_xml, only: xml_escape
    implicit none
    private
 
@@ -161,28 +162,4 @@ contains
       end do
       comps = work(1:n)
    end subroutine split_path
-
-   !> Escape the five XML special characters for use in an attribute value.
-   pure function xml_escape(s) result(e)
-      character(len=*), intent(in) :: s
-      character(len=:), allocatable :: e
-      integer :: k
-      e = ''
-      do k = 1, len(s)
-         select case (s(k:k))
-         case ('&')
-            e = e//'&amp;'
-         case ('<')
-            e = e//'&lt;'
-         case ('>')
-            e = e//'&gt;'
-         case ('"')
-            e = e//'&quot;'
-         case ('''')
-            e = e//'&apos;'
-         case default
-            e = e//s(k:k)
-         end select
-      end do
-   end function xml_escape
 end module vemcontact_output_pvd

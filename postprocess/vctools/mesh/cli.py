@@ -29,7 +29,7 @@ def _parser():
     s = sub.add_parser("paper", help="regenerate the meshes of the paper's four examples")
     s.add_argument("--scenes", default=str(SCENES), help=f"scene directory (default {SCENES})")
     s.add_argument("-o", "--output", default=str(OUTDIR), help=f"output directory (default {OUTDIR})")
-    s = sub.add_parser("gmsh", help="convert a Gmsh .msh 4.1 ASCII mesh")
+    s = sub.add_parser("gmsh", help="convert a Gmsh .msh mesh (2.2 or 4.1, ASCII or binary)")
     s.add_argument("msh")
     s.add_argument("-o", "--output", help="output .inp (default: next to the .msh)")
     s.add_argument("--formulation", default="vem", choices=["vem", "fem"])

@@ -8,6 +8,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from .errors import MeshError
+from .progress import Progress
 from .geometry import points_in_polygon, polyline_segments, signed_area
 from .mesh import Mesh, _compact, insert_hanging_nodes, merge_close, split_joint
 from .sizing import Density, Grading
@@ -256,6 +257,7 @@ def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=
     hmax = density.max_spacing()
     energies = []
     t0 = time.time()
+    progress = Progress(f"meshing {len(free) + len(fixed)} cells: Lloyd iteration")
     try:
         for it in range(lloyd + 1):
             seeds = np.concatenate([free, fixed])
@@ -266,19 +268,22 @@ def voronoi_group(bodies, joints=(), seed=0, lloyd=20, per_tile=4000, processes=
             energies.append(float(energy.sum()))
             if verbose:
                 print(f"  lloyd {it:3d}: energy {energies[-1]:.10g}  ({time.time() - t0:.1f} s)")
+            else:
+                progress.update(it + 1, lloyd + 1)
             if final:
                 break
             move = mass[:nfree] > 0
             free = free.copy()
             free[move] = cen[:nfree][move]
     finally:
+        progress.done()
         tess.close()
 
     # assemble the cells: whole Voronoi cells share vertices identified by their triangle's
     # global generator ids; clipped and cut pieces by coordinates
     key_chunks, xy_chunks, lens, owners = [], [], [], []
     piece_chunks, piece_lens = [], []
-    for own, ptr, V, keep, keys, pieces, owner in cells:
+    for own, ptr, V, keep, keys, pieces, _owner in cells:
         cnt = np.diff(ptr)[keep]
         starts = ptr[:-1][keep]
         rep = np.repeat(starts, cnt) + (np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt))

@@ -35,11 +35,15 @@ def predicate(spec, tol, where):
         base = lambda xy: np.abs(np.hypot(*(xy - cen).T) - r) <= tol   # noqa: E731
 
         def chord(pa, pb):
-            # the midpoint of a chord lies inside the arc by the sagitta L^2 / (8 r)
+            # the midpoint of a chord lies inside the arc by the sagitta r - sqrt(r^2 - L^2 / 4)
+            # (exactly: its small-angle form L^2 / (8 r) is short by L^4 / (128 r^3), which
+            # rejected the sides of a coarse arc)
             mid = 0.5 * (pa + pb)
             L2 = ((pb - pa) ** 2).sum(1)
             d = r - np.hypot(*(mid - cen).T)
-            return base(pa) & base(pb) & (d >= -tol) & (d <= L2 / (8.0 * r) * (1 + 1e-9) + tol) & in_range(mid)
+            sag = r - np.sqrt(np.maximum(r * r - 0.25 * L2, 0.0))
+            return (base(pa) & base(pb) & (d >= -tol) & (d <= sag * (1 + 1e-9) + tol)
+                    & in_range(pa) & in_range(pb))
         f = lambda xy: base(xy) & in_range(xy)   # noqa: E731
         f.edge = chord
         return f
@@ -83,9 +87,35 @@ def select(m, spec, tol, where):
     return cell[sel][o], side[sel][o], nodes
 
 
+def check_faces(m, spec, cells, sides, nodes, tol, where):
+    """A selection along a line (x, y, segment, polyline, circle) must find element sides,
+    every boundary node it matches must lie on one of them, and a segment or polyline
+    must be covered over its whole length; else the selection missed (part of) its face."""
+    kind = next(k for k in GEOMETRY_KEYS if k in spec)
+    if kind == "point":
+        return
+    if len(cells) == 0:
+        raise MeshError(f"{where}: the selection ({kind}) matches {len(nodes)} boundary node(s) but no "
+                        f"element side: it misses the face it names (check its coordinates and tolerance)")
+    ends = np.array([[m.cell(c)[s - 1], m.cell(c)[s % len(m.cell(c))]] for c, s in zip(cells, sides)])
+    loose = np.setdiff1d(nodes, ends.ravel())
+    if len(loose):
+        raise MeshError(f"{where}: {len(loose)} matched boundary node(s) lie on no selected element side, "
+                        f"e.g. at {m.nodes[loose[0]].round(6).tolist()}: the selection covers fewer faces "
+                        f"than its geometry implies")
+    if kind in ("segment", "polyline"):
+        pts = as_points(spec[kind], where)
+        want = np.hypot(*np.diff(pts, axis=0).T).sum()
+        got = np.hypot(*(m.nodes[ends[:, 1]] - m.nodes[ends[:, 0]]).T).sum()
+        if got < want - 2 * tol * len(pts):
+            raise MeshError(f"{where}: the selected sides cover a length {got:.6g} of the {kind}'s "
+                            f"{want:.6g}: part of it lies on no boundary side")
+
+
 def add_selection(m, name, spec, tol):
     where = f"selection {name!r}"
     cells, sides, nodes = select(m, spec, tol, where)
+    check_faces(m, spec, cells, sides, nodes, tol, where)
     if name in m.nsets or name in m.esurfaces:
         raise MeshError(f"{where}: the name is already used")
     m.nsets[name] = nodes

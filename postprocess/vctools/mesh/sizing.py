@@ -15,7 +15,7 @@ class Grading:
 
     def __init__(self, specs, where: str):
         self.items = []
-        for k, s in enumerate(specs or []):
+        for _k, s in enumerate(specs or []):
             if not isinstance(s, dict):
                 raise MeshError(f"{where}: grading entries are tables, got {s!r}")
             ratio = float(s.get("ratio", 0.25))

@@ -1,16 +1,21 @@
 """vc-curves: line plots of vemcontact results, across one or several runs.
 
-  python -m vctools.plot.curves pressure   RUN... [--hertz P,R,E1,NU1,E2,NU2] [-o FILE]
-  python -m vctools.plot.curves deflection RUN... [--exact 0.3] [-o FILE]
-  python -m vctools.plot.curves peak       RUN... [--hertz P,R,E1,NU1,E2,NU2 | --exact P0] [-o FILE]
-  python -m vctools.plot.curves iterations RUN... [--label L ...] [--paper-table1] [-o FILE] [--markdown FILE]
+  vc-curves contact    RUN... [--pair K] [--step K] [--along auto|x|y|s] [--hertz P,R,E1,NU1,E2,NU2] [-o FILE]
+  vc-curves deflection RUN... [--exact 0.3] [-o FILE]
+  vc-curves peak       RUN... [--hertz P,R,E1,NU1,E2,NU2 | --exact P0] [-o FILE]
+  vc-curves iterations RUN... [--label L ...] [--paper-table1] [-o FILE] [--markdown FILE]
+
+vc-curves is installed with the package (pip install ./postprocess); without it,
+`python -m vctools.plot.curves` is the same command.  `pressure` is another name of
+`contact`.
 
 RUN is a run's output folder (vemcontact -o DIR) or one of its files: the contact
-CSV (JOB_contact_pairK_NNNN.csv) for `pressure`, JOB.h5 for `deflection` and
+CSV (JOB_contact_pairK_NNNN.csv) for `contact`, JOB.h5 for `deflection` and
 `peak`, JOB.log for `iterations`.
 
-pressure    CPRESS and COPEN of a contact pair against the coordinate along it,
-            runs overlaid; --hertz draws the plane-strain Hertz pressure
+contact,    CPRESS, COPEN and CSLIP of a contact pair against the coordinate along
+pressure    it (x, y or the distance s along the slave nodes: --along), runs
+            overlaid; --hertz draws the plane-strain Hertz pressure
             p(x) = p0 sqrt(1 - x^2/a^2), a = sqrt(4 P R/(pi E*)), p0 = 2 P/(pi a),
             1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (P: load on the full disc).
 deflection  tip deflection / exact against the distortion 2d/b of the two-element
@@ -112,16 +117,21 @@ def _labels(n: int, given: list | None, default) -> list[str]:
 
 # ------------------------------------------------------------------ pressure
 def plot_pressure(curves, out: str, labels=None, hertz_args=None, along: str = "auto", units: str = "",
-                  xmax: float | None = None, title: str | None = None, gap: bool = True) -> dict:
-    """CPRESS (and COPEN) of contact curves against the coordinate along the pair.
+                  xmax: float | None = None, title: str | None = None, gap: bool = True,
+                  slip: bool = True) -> dict:
+    """CPRESS, COPEN and CSLIP of contact curves against the coordinate along the pair
+    (one panel each; COPEN with `gap`, CSLIP with `slip` when the files have it).
     Returns {'a':, 'p0':} when the Hertz curve is drawn, else {}."""
     plt = _plt()
     lu, su = _units(units)
     labels = _labels(len(curves), labels, lambda i: curves[i].job)
-    nrow = 2 if gap else 1
-    fig, axes = plt.subplots(nrow, 1, figsize=(7.5, 6.2 if gap else 4.4), dpi=110, sharex=True, squeeze=False,
-                             gridspec_kw={"height_ratios": [2.2, 1] if gap else [1]})
-    axp = axes[0, 0]
+    slip = slip and any(c.cslip is not None for c in curves)
+    panels = ["CPRESS"] + (["COPEN"] if gap else []) + (["CSLIP"] if slip else [])
+    heights = {"CPRESS": 2.2, "COPEN": 1.0, "CSLIP": 1.0}
+    fig, axes = plt.subplots(len(panels), 1, figsize=(7.5, 2.2 + 2.0 * len(panels)), dpi=110, sharex=True,
+                             squeeze=False, gridspec_kw={"height_ratios": [heights[k] for k in panels]})
+    ax_of = {k: axes[i, 0] for i, k in enumerate(panels)}
+    axp = ax_of["CPRESS"]
     info = {}
     xlabel = "x"
     styles = ["o-", "s-", "^-", "v-", "d-", "x-", "+-", "<-", ">-"]
@@ -129,9 +139,12 @@ def plot_pressure(curves, out: str, labels=None, hertz_args=None, along: str = "
         t, xlabel = c.along(along)
         order = np.argsort(t)
         col = COLORS[i % len(COLORS)]
-        axp.plot(t[order], c.cpress[order], styles[i % len(styles)], color=col, ms=3.5, lw=1.1, label=lab)
+        st = styles[i % len(styles)]
+        axp.plot(t[order], c.cpress[order], st, color=col, ms=3.5, lw=1.1, label=lab)
         if gap:
-            axes[1, 0].plot(t[order], c.copen[order], styles[i % len(styles)], color=col, ms=3.0, lw=0.9, label=lab)
+            ax_of["COPEN"].plot(t[order], c.copen[order], st, color=col, ms=3.0, lw=0.9, label=lab)
+        if slip and c.cslip is not None:
+            ax_of["CSLIP"].plot(t[order], c.cslip[order], st, color=col, ms=3.0, lw=0.9, label=lab)
     if hertz_args is not None:
         a, p0, _ = hertz(*hertz_args)
         xs = np.linspace(0.0, a, 200)
@@ -141,25 +154,33 @@ def plot_pressure(curves, out: str, labels=None, hertz_args=None, along: str = "
     if xmax is not None:
         tmin = min(float(np.min(c.along(along)[0])) for c in curves if len(c.x))
         axp.set_xlim(left=min(0.0, tmin) - 0.02 * xmax, right=xmax)
-        if gap:   # the gap axis from the visible nodes only (far nodes open wide)
-            vis = [c.copen[c.along(along)[0] <= xmax] for c in curves]
+        for k in panels[1:]:   # the lower axes from the visible nodes only (far nodes open wide)
+            vals = [getattr(c, k.lower()) for c in curves]
+            vis = [v[c.along(along)[0] <= xmax] for c, v in zip(curves, vals) if v is not None]
             lo = min(min(v.min(), 0.0) for v in vis if len(v))
             hi = max(max(v.max(), 0.0) for v in vis if len(v))
             pad = 0.08 * (hi - lo) if hi > lo else 1.0
-            axes[1, 0].set_ylim(lo - pad, hi + pad)
+            ax_of[k].set_ylim(lo - pad, hi + pad)
     axp.set_ylabel(f"contact pressure CPRESS{su}")
     axp.grid(alpha=0.3)
     axp.legend(fontsize=8)
     axp.set_ylim(bottom=0.0)
     if gap:
-        ax = axes[1, 0]
+        ax = ax_of["COPEN"]
         ax.axhline(0.0, color="k", lw=0.6)
         ax.set_ylabel(f"gap COPEN{lu}\n(< 0: overclosure)")
         ax.grid(alpha=0.3)
-        ax.set_xlabel(f"{xlabel}{lu}")
-    else:
-        axp.set_xlabel(f"{xlabel}{lu}")
-    axp.set_title(title or "contact pressure along the pair", fontsize=10)
+    if slip:
+        ax = ax_of["CSLIP"]
+        ax.axhline(0.0, color="k", lw=0.6)
+        ax.set_ylabel(f"slip CSLIP{lu}")
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel(f"{xlabel}{lu}")
+    if title is None:
+        title = "contact along the pair"
+        if len({(c.pair, c.step) for c in curves}) == 1:
+            title = f"contact pair {curves[0].pair}, step {curves[0].step}"
+    axp.set_title(title, fontsize=10)
     fig.tight_layout()
     _save(fig, out)
     return info
@@ -177,11 +198,12 @@ def cantilever_point(run: str, exact: float = 0.3, step: int = 0) -> dict:
     y0, y1 = xy[:, 1].min(), xy[:, 1].max()
     L, b = x1 - x0, y1 - y0
     tol = 1e-9 * max(L, b)
-    bottom_mid = [x for x, y in xy if abs(y - y0) <= tol and x0 + tol < x < x1 - tol]
-    if len(bottom_mid) != 1 or b <= 0:
+    bottom_mid = sorted(x for x, y in xy if abs(y - y0) <= tol and x0 + tol < x < x1 - tol)
+    if len(bottom_mid) not in (1, 3) or b <= 0:
         raise ResultError(f"{info.path}: not the two-element cantilever of example 1 "
                           f"(expected one bottom node between the ends, found {len(bottom_mid)})")
-    d = x0 + L / 2 - bottom_mid[0]
+    # second-order elements: the shared corner lies between the two side nodes
+    d = x0 + L / 2 - bottom_mid[len(bottom_mid) // 2]
     key = info.steps[step - 1] if step else info.steps[-1]
     tip = np.abs(xy[:, 0] - x1) <= tol
     uy = float(np.mean(info.displacements[key][tip, 1]))
@@ -252,7 +274,7 @@ def iteration_series(runs: list[str], labels=None, step: int = 0) -> list[dict]:
     active counts, converged flag."""
     out = []
     logs = [read_log(r) for r in runs]
-    for i, lg in enumerate(logs):
+    for _i, lg in enumerate(logs):
         name, its, conv = lg.step(step)
         out.append({"job": lg.job, "step": name, "K": lg.penalty(step), "converged": conv,
                     "peaks": [it.pressure for it in its], "active": [it.active for it in its],
@@ -332,14 +354,15 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="vc-curves", description=doc[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter,
                                 epilog="\n\n".join(doc[1:]))
-    sub = p.add_subparsers(dest="cmd", required=True, metavar="{pressure,deflection,peak,iterations}")
+    sub = p.add_subparsers(dest="cmd", required=True, metavar="{contact,deflection,peak,iterations}")
 
     def common(sp, default_out):
         sp.add_argument("runs", nargs="+", metavar="RUN", help="run folder or result file (several: overlaid)")
         sp.add_argument("-o", "--output", default=default_out, help=f"picture to write (.png or .pdf; default {default_out})")
         sp.add_argument("--title", default=None, help="title of the picture")
 
-    sp = sub.add_parser("pressure", help="CPRESS and COPEN along a contact pair, runs overlaid")
+    sp = sub.add_parser("pressure", aliases=["contact"],
+                        help="CPRESS, COPEN and CSLIP along a contact pair, runs overlaid")
     common(sp, "pressure.png")
     sp.add_argument("--hertz", metavar="P,R,E1,NU1,E2,NU2", help="overlay the plane-strain Hertz pressure")
     sp.add_argument("--pair", type=int, default=1, help="contact pair (default 1)")
@@ -349,7 +372,8 @@ def main(argv=None) -> int:
     sp.add_argument("--label", action="append", help="legend label of each run, in order (repeatable)")
     sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]", help="units on the axes, e.g. m,Pa")
     sp.add_argument("--xmax", type=float, default=None, help="right end of the x axis")
-    sp.add_argument("--no-gap", action="store_true", help="pressure only, without the COPEN panel")
+    sp.add_argument("--no-gap", action="store_true", help="without the COPEN panel")
+    sp.add_argument("--no-slip", action="store_true", help="without the CSLIP panel")
 
     sp = sub.add_parser("deflection", help="tip deflection ratio against 2d/b (example 1), VEM and FEM")
     common(sp, "deflection.png")
@@ -373,11 +397,11 @@ def main(argv=None) -> int:
 
     a = p.parse_args(argv)
     try:
-        if a.cmd == "pressure":
+        if a.cmd in ("pressure", "contact"):
             hz = parse_hertz(a.hertz) if a.hertz else None
             curves = [read_contact(r, a.pair, a.step) for r in a.runs]
             info = plot_pressure(curves, a.output, labels=a.label, hertz_args=hz, along=a.along, units=a.units,
-                                 xmax=a.xmax, title=a.title, gap=not a.no_gap)
+                                 xmax=a.xmax, title=a.title, gap=not a.no_gap, slip=not a.no_slip)
             for c in curves:
                 k = int(np.argmax(c.cpress)) if len(c.cpress) else 0
                 print(f"{c.job}: {int(c.closed.sum())} of {len(c.closed)} slave nodes closed, "

@@ -138,13 +138,21 @@ def read_vtu(path: str) -> PolyResult:
         cell_data[name] = np.concatenate([np.asarray(a) for a in arrays])
     # meshio splits polygons into blocks by vertex count; cells keep the file's
     # order within each block, so reorder by ELEMENT_ID position when present
-    if "ELEMENT_ID" not in cell_data or "U" not in mesh.point_data:
-        raise ResultError(f"{path}: lacks ELEMENT_ID/U: not written by vemcontact")
+    # the labels are always written; the result fields only when the deck's output
+    # requests select them (docs/output-format.md)
+    if "ELEMENT_ID" not in cell_data or "NODE_ID" not in mesh.point_data:
+        raise ResultError(f"{path}: lacks ELEMENT_ID/NODE_ID: not written by vemcontact")
     return PolyResult(points=np.asarray(mesh.points)[:, :2], polygons=polygons,
                       point_data=dict(mesh.point_data), cell_data=cell_data, path=path)
 
 
-COMPONENTS = {"U": ["x", "y", "z"], "S": ["xx", "yy", "zz", "xy"]}
+# the .vtu's tensors have 9 components, row by row (docs/output-format.md)
+TENSOR = ["xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"]
+COMPONENTS = {"U": ["x", "y", "z"], "RF": ["x", "y", "z"], "S": TENSOR, "E": TENSOR}
+# the output request that writes a field (a deck with requests writes only what they select)
+REQUEST = {"U": "U under *NODE FILE", "RF": "RF under *NODE FILE", "S": "S under *EL FILE",
+           "S1": "S under *EL FILE", "S3": "S under *EL FILE", "MISES": "S under *EL FILE",
+           "E": "E under *EL FILE"}
 
 
 def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
@@ -158,7 +166,8 @@ def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
     data = res.point_data if where == "point" else res.cell_data
     if name not in data:
         have = ", ".join(sorted(data))
-        raise ResultError(f"{res.path}: no {where} field {name} (it has {have})")
+        hint = f"; the deck's output requests do not select it (add {REQUEST[name]})" if name in REQUEST else ""
+        raise ResultError(f"{res.path}: no {where} field {name} (it has {have}{hint})")
     v = np.asarray(data[name], dtype=float)
     if v.ndim == 1:
         if comp:
@@ -172,3 +181,30 @@ def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
     if comp not in names:
         raise ResultError(f"{res.path}: field {name} has no component {comp} (it has {', '.join(names)})")
     return v[:, names.index(comp)], where, f"{name}_{comp}"
+
+
+def step_label(vtu_path: str, index: int | None = None) -> str:
+    """'step K, NAME' of a step file JOB_NNNN.vtu: K from the file name (or `index`),
+    NAME the step's name in JOB.h5 beside it (Abaqus' *STEP, NAME=, default Step-K);
+    only 'step K' when the HDF5 file or the name is not there."""
+    import re
+
+    base = os.path.basename(vtu_path)
+    m = re.match(r"(?P<job>.*)_(?P<k>\d{4,})\.vtu$", base)
+    if not m:
+        return f"step {index}" if index else ""
+    k = int(m.group("k"))
+    h5 = os.path.join(os.path.dirname(vtu_path), m.group("job") + ".h5")
+    name = ""
+    if os.path.exists(h5):
+        try:
+            import h5py
+            with h5py.File(h5, "r") as f:
+                g = f.get(f"steps/{m.group('k')}")
+                if g is not None and "name" in g.attrs:
+                    name = g.attrs["name"]
+                    name = name.decode() if isinstance(name, bytes) else str(name)
+                    name = name.strip().strip("\x00")
+        except OSError:
+            name = ""
+    return f"step {k}, {name}" if name else f"step {k}"

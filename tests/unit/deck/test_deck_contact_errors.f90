@@ -88,9 +88,17 @@ program test_deck_contact_errors
                'invalid value LIN for parameter PRESSURE-OVERCLOSURE')
    call expect('beh_no_po', with_block(cb(6, '*SURFACE BEHAVIOR')), 13, &
                'missing required parameter PRESSURE-OVERCLOSURE of *SURFACE BEHAVIOR')
-   call expect('beh_sigma', with_block(cb(7, '1000., 0.5')), 14, &
-               'vemcontact uses p = K * overclosure with no tension at positive clearance; remove sigma_inf')
-   call expect('beh_c0', with_block(cb(7, '1000., , 1e-3')), 14, 'no tension at positive clearance; remove c0')
+   call read_deck(write_deck('beh_sigma_c0', with_block(cb(7, '1000., 0.5, 1e-3'))), m, err)
+   call t%check(.not. allocated(err), 'CalculiX''s sigma_inf and c0 are accepted')
+   if (.not. allocated(err)) then
+      call t%close(m%interactions(1)%sigma_inf, 0.5_wp, 1.0e-15_wp, 'sigma_inf recorded')
+      call t%close(m%interactions(1)%c0, 1.0e-3_wp, 1.0e-15_wp, 'c0 recorded')
+      call t%equal(size(m%warnings), 1, 'one warning: the tension sigma_inf is not modelled')
+      if (size(m%warnings) == 1) call t%check(index(m%warnings(1)%s, ':14: warning: sigma_inf = 0.5') > 0, &
+                                              'the warning names file:line and sigma_inf')
+   end if
+   call expect('beh_sigma', with_block(cb(7, '1000., -0.5')), 14, 'sigma_inf = -0.5 must not be negative')
+   call expect('beh_c0', with_block(cb(7, '1000., , -1e-3')), 14, 'c0 = -1e-3 must not be negative')
    call expect('beh_k_zero', with_block(cb(7, '0.')), 14, 'penalty slope K = 0. must be positive')
    call expect('beh_k_missing', with_block(cb(7, ', 0.')), 14, 'missing penalty slope K')
    call expect('beh_fields', with_block(cb(7, '1., 0., 0., 4.')), 14, &
