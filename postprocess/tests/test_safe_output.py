@@ -74,7 +74,8 @@ def check_folder(out, job, contact=True, allow_temporaries=False):
                 text = fh.read()
             assert text.endswith("\n"), f"{p} ends in the middle of a line"
             rows = list(csv.reader(text.splitlines()))
-            assert rows[0][0] == "node" and all(len(r) == len(rows[0]) for r in rows), p
+            first = "variable" if "_print_" in n else "node"   # JOB_print_NNNN.csv or a contact CSV
+            assert rows[0][0] == first and all(len(r) == len(rows[0]) for r in rows), p
     complete, h5steps = None, None
     h5 = os.path.join(out, job + ".h5")
     if os.path.exists(h5):
@@ -231,6 +232,51 @@ def test_rerun_after_failure(exe, tmp_path):
     assert plot_main([str(out / "job.pvd"), "-o", str(tmp_path / "pics")]) == 1
     assert plot_main([str(out / "job_0001.vtu"), "-o", str(tmp_path / "pics")]) == 1
     assert not os.path.exists(tmp_path / "pics") or not os.listdir(tmp_path / "pics")
+
+
+def test_print_tables_rerun_and_links(exe, tmp_path):
+    """JOB_print_NNNN.csv (*NODE PRINT, *EL PRINT) is written like every result:
+    a link planted under its name is replaced, not written through; a rerun
+    without PRINT requests removes the previous run's tables and their
+    temporaries; a rerun failing in step 2 leaves step 1's table only."""
+    prints = "*NODE PRINT, NSET=FIX, TOTALS=YES\nRF\n*EL PRINT, ELSET=ALL\nS\n*END STEP"
+    with_print = TWO_STEPS.replace("*MATERIAL", "*NSET, NSET=FIX\n1, 2\n*MATERIAL")
+    with_print = with_print.replace("*END STEP", prints)
+    decks = {}
+    for name, second in (("good", "1, 2"), ("bad", "2")):
+        (tmp_path / name).mkdir()
+        decks[name] = tmp_path / name / "job.inp"
+        decks[name].write_text(with_print.format(second=second))
+    (tmp_path / "plain").mkdir()
+    decks["plain"] = tmp_path / "plain" / "job.inp"
+    decks["plain"].write_text(TWO_STEPS.format(second="1, 2"))
+    out = tmp_path / "out"
+    out.mkdir()
+    victim = tmp_path / "victim"
+    victim.write_text("precious")
+    os.symlink(victim, out / "job_print_0001.csv")
+
+    p = run(exe, decks["good"], out)
+    assert p.returncode == 0, p.stderr
+    assert victim.read_text() == "precious"
+    assert check_folder(out, "job", contact=False) == (1, [1, 2])
+    for step in (1, 2):
+        with open(out / f"job_print_{step:04d}.csv", newline="") as fh:
+            rows = list(csv.DictReader(fh))
+        # both supports' reactions balance the single load (0, -1) of the deck
+        total = [float(r["value"]) for r in rows if r["entity"] == "total" and r["variable"] == "RF"]
+        assert len(total) == 2 and abs(total[1] - 1.0) < 1e-12, total   # sums of 2 values: round-off only
+        assert sum(r["variable"] == "S" for r in rows) == 4              # one element, 4 components
+
+    (out / ".job_print_0002.csv.AAAAAAAAAAAA.tmp").write_text("left by a killed run")
+    assert run(exe, decks["plain"], out).returncode == 0
+    assert not [n for n in os.listdir(out) if "_print_" in n], os.listdir(out)
+
+    assert run(exe, decks["good"], out).returncode == 0
+    p = run(exe, decks["bad"], out)
+    assert p.returncode == 3, p.stderr
+    assert os.path.exists(out / "job_print_0001.csv") and not os.path.exists(out / "job_print_0002.csv")
+    assert check_folder(out, "job", contact=False) == (0, [1])
 
 
 def test_incomplete_messages(exe, tmp_path, capsys):
