@@ -169,7 +169,7 @@ contains
       real(wp), intent(inout) :: u(:)
       type(contact_state_t), intent(inout), target :: contact
       type(error_t), allocatable, intent(out) :: error
-      type(logger_t), intent(in), optional :: log
+      type(logger_t), intent(inout), optional :: log
       logical, allocatable :: history(:, :), hold(:), held(:)
       integer(ip), allocatable :: iseg_start(:)
       real(wp), allocatable :: f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:)
@@ -489,7 +489,7 @@ contains
       logical, intent(in) :: contact_closed
       logical, intent(inout) :: warned
       type(error_t), allocatable, intent(out) :: error
-      type(logger_t), intent(in), optional :: log
+      type(logger_t), intent(inout), optional :: log
       character(len=120) :: msg
       integer :: verdict
       verdict = conditioning_verdict(rc, ratio, contact_closed)

@@ -3,7 +3,7 @@
 !> once at the end (see vemcontact_deck_finish); sets are resolved when read, so
 !> the nodes and elements they name must be defined before them, as in CalculiX.
 module vemcontact_deck_mesh
-   use vemcontact_kinds, only: wp, ip
+   use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_model, only: model_t, source_loc_t, etype_polygon, etype_quad4, etype_tri3, &
                                etype_polygon2, etype_quad8, etype_tri6, &
                                plane_strain, plane_stress
@@ -100,7 +100,7 @@ contains
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
       character(len=:), allocatable :: tname, sname
-      logical :: found, ok, more
+      logical :: found, ok, more, continued
       integer :: kset, etype, plane, nn, k, nnod, stat
       integer(ip) :: id, nid
       call get_param(kw, 'TYPE', tname, found)
@@ -144,11 +144,16 @@ contains
          call advance(p)
          if (p%src%kind /= line_data) exit
          call split_fields(p%src%text(1:p%src%length), p%f)
+         ! a polygon's continued lines are split once at the end (splitting the
+         ! growing line after every continuation is quadratic in its length)
+         continued = .false.
          do while (p%src%text(p%src%length:p%src%length) == ',' .and. (nn == 0 .or. p%f%n < nn + 1))
             call p%src%continue_line(more)
             if (.not. more) exit
-            call split_fields(p%src%text(1:p%src%length), p%f)
+            continued = .true.
+            if (nn > 0) call split_fields(p%src%text(1:p%src%length), p%f)
          end do
+         if (continued .and. nn == 0) call split_fields(p%src%text(1:p%src%length), p%f)
          call get_id(p, 1, 'element id', id, ok)
          if (.not. ok) then
             p%element_errors = .true.
@@ -256,6 +261,8 @@ contains
       logical :: found, generate, ok
       integer :: kset, k, kind, kref, nmissing
       integer(ip) :: id, first, last, inc, i, idx, first_missing
+      integer(i8) :: nrange, nfound
+      character(len=24) :: cbuf
       type(item_list_t) :: line_items
       if (is_node) then
          what = 'node'
@@ -294,6 +301,31 @@ contains
             if (last < first) then
                call err_here(p, 'GENERATE range is empty: last id '//int_str(last)// &
                              ' is smaller than first id '//int_str(first))
+               cycle
+            end if
+            ! more ids in the range than defined: some are missing; they are counted
+            ! from the defined ids, never by walking a range of up to 2**31 ids
+            nrange = (int(last, i8) - first)/inc + 1
+            if (nrange > int(merge(model%nnode, model%nelem, is_node), i8)) then
+               nfound = 0
+               do k = 1, merge(model%nnode, model%nelem, is_node)
+                  if (is_node) then
+                     id = model%node_id(k)
+                  else
+                     id = model%elem_id(k)
+                  end if
+                  if (id >= first .and. id <= last .and. mod(int(id, i8) - first, int(inc, i8)) == 0) &
+                     nfound = nfound + 1
+               end do
+               ! the first missing id comes after at most nfound defined ones
+               first_missing = first
+               do while (lookup(first_missing) /= 0)
+                  first_missing = first_missing + inc
+               end do
+               write (cbuf, '(i0)') nrange - nfound
+               call err_here(p, trim(cbuf)//' of the ids '//int_str(first)//' to '//int_str(last)// &
+                             ' are not defined '//what//'s (the first is '//int_str(first_missing)//')', &
+                             what//'s must be defined before a set refers to them')
                cycle
             end if
             nmissing = 0

@@ -1,9 +1,11 @@
 !> Linear static analysis over the deck's steps, with output after every step.
-!> Every completed step is on disk (VTU, PVD, HDF5) before the next starts, so a
-!> run that fails part way keeps what it completed.
+!> Every completed step is in the VTU and PVD files before the next starts and
+!> in the HDF5 file, which gets its final name when the run ends: a run that
+!> fails part way keeps the steps it completed (the HDF5 file without the step
+!> that failed and marked `complete = 0`); a killed run leaves no HDF5 file.
 module vemcontact_driver_static
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_error, only: error_t
+   use vemcontact_error, only: error_t, append_message
    use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic, &
                                element_order, etype_polygon2, &
                                pair_surface_to_surface
@@ -41,11 +43,38 @@ module vemcontact_driver_static
 contains
 
    !> Run every step.  The model gains the interface nodes of SURFACE TO SURFACE
-   !> contact pairs (contact_state_t%init) before anything is assembled.
+   !> contact pairs (contact_state_t%init) before anything is assembled.  When a
+   !> step fails, the HDF5 file keeps the steps before it and is closed with
+   !> `complete = 0`.
    subroutine run_static(model, opts, log, error)
       type(model_t), intent(inout) :: model
       type(run_options_t), intent(in) :: opts
-      type(logger_t), intent(in) :: log
+      type(logger_t), intent(inout) :: log
+      type(error_t), allocatable, intent(out) :: error
+      type(h5_writer_t) :: h5
+      type(error_t), allocatable :: err2
+      integer :: current, done
+      current = 0
+      done = 0
+      call run_steps(model, opts, log, h5, current, done, error)
+      if (.not. allocated(error) .or. .not. h5%is_open()) return
+      if (current > done) call h5%discard_step(current, err2)
+      if (allocated(err2)) then
+         call h5%discard()
+      else
+         call h5%close(err2)
+      end if
+      if (allocated(err2)) call append_message(error, '(no HDF5 results file: '//err2%message//')')
+   end subroutine run_static
+
+   !> The analysis and its output; `current` is the step being run, `done` the
+   !> last step whose results are in every file.
+   subroutine run_steps(model, opts, log, h5, current, done, error)
+      type(model_t), intent(inout) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(h5_writer_t), intent(inout) :: h5
+      integer, intent(inout) :: current, done
       type(error_t), allocatable, intent(out) :: error
       type(linear_system_t) :: sys
       type(load_state_t) :: st
@@ -53,7 +82,6 @@ contains
       type(contact_table_t) :: tab
       integer, allocatable :: parts(:)
       integer :: ip_
-      type(h5_writer_t) :: h5
       real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:), s_at(:, :)
       real(wp), allocatable :: e_at(:, :), ku(:), f(:), set_rf(:, :)
       integer, allocatable :: rf_sets(:)
@@ -129,11 +157,17 @@ contains
       call h5%open(base//'.h5', error)
       if (allocated(error)) return
       call h5%write_mesh(model, error)
-      if (allocated(error)) return
+      if (allocated(error)) then
+         call h5%discard()
+         return
+      end if
       extra%elem_set = element_section_sets(model)
       extra%elem_part = element_parts(model, sys%part)
       call h5%write_labels(model, extra%elem_set, extra%elem_part, error)
-      if (allocated(error)) return
+      if (allocated(error)) then
+         call h5%discard()
+         return
+      end if
 
       call init_load_state(model, st)
       allocate (u(2*model%nnode), s_elem(4, model%nelem), s_node(4, model%nnode))
@@ -146,6 +180,7 @@ contains
       allocate (vtu_files(0), times(0), parts(0))
       u = 0.0_wp
       do istep = 1, size(model%steps)
+         current = istep
          name = step_name(istep)
          call log%say('step '//name)
          call advance_load_state(model%steps(istep), st)
@@ -266,12 +301,16 @@ contains
          end if
          call write_pvd(base//'.pvd', vtu_files, times, error, parts)
          if (allocated(error)) return
+         done = istep
          call log%phase('write', wall_time() - t0)
          write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(u_out(1::2))), &
             ', max |u_y| ', maxval(abs(u_out(2::2))), ', rcond ', sys%solver%rcond()
          call log%say(trim(buf))
+         call log%failed(error)
+         if (allocated(error)) return
       end do
-      call h5%close()
+      call h5%close(error, complete=.true.)
+      if (allocated(error)) return
       call sys%solver%release()
       call log%say('results')
       call log%say('  '//base//'.pvd')
@@ -304,5 +343,5 @@ contains
             s = trim(b)
          end if
       end function step_name
-   end subroutine run_static
+   end subroutine run_steps
 end module vemcontact_driver_static

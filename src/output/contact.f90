@@ -8,9 +8,10 @@
 !> length * thickness), STATUS (1 closed, 0 open, 2 slid off the master's end), PAIR.
 module vemcontact_output_contact
    use vemcontact_kinds, only: wp, ip, i8
-   use vemcontact_error, only: error_t, fatal_error, err_io
+   use vemcontact_error, only: error_t
    use vemcontact_output_base64, only: as_bytes
-   use vemcontact_output_vtu, only: put, put_array, vtk_file_attributes, int_type_name, itoa, replace_file
+   use vemcontact_output_vtu, only: put, put_array, vtk_file_attributes, int_type_name, itoa, finish_file
+   use vemcontact_safe_file, only: safe_file_t
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_output_selection, only: field_selection_t
    implicit none
@@ -31,41 +32,37 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(field_selection_t), intent(in), optional :: sel
       type(field_selection_t) :: w
-      integer :: unit, ios, k
-      character(len=512) :: msg
-      character(len=:), allocatable :: head
+      type(safe_file_t) :: out
+      integer :: k
+      character(len=32) :: num
+      character(len=:), allocatable :: head, line
       if (present(sel)) w = sel
-      open (newunit=unit, file=path//'.tmp', status='replace', action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
-         return
-      end if
+      call out%open(path, error)
+      if (allocated(error)) return
       head = 'node,x,y'
       if (w%copen) head = head//',COPEN'
       if (w%cpress) head = head//',CPRESS'
       if (w%cslip) head = head//',CSLIP'
-      write (unit, '(a)', iostat=ios) head//',CNAREA,STATUS'
+      call out%write(head//',CNAREA,STATUS'//new_line('a'))
       do k = 1, size(tab%node_id)
          if (tab%pair(k) /= ipair) cycle
-         if (ios /= 0) exit
-         write (unit, '(i0,2(",",es24.16e3))', advance='no', iostat=ios) tab%node_id(k), tab%x(:, k)
+         write (num, '(i0)') tab%node_id(k)
+         line = trim(num)
+         call column(tab%x(1, k))
+         call column(tab%x(2, k))
          if (w%copen) call column(tab%copen(k))
          if (w%cpress) call column(tab%cpress(k))
          if (w%cslip) call column(tab%cslip(k))
          call column(tab%cnarea(k))
-         if (ios == 0) write (unit, '(",",a)', iostat=ios) status_name(tab%status(k))
+         call out%write(line//','//status_name(tab%status(k))//new_line('a'))
       end do
-      close (unit)
-      if (ios /= 0) then
-         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
-         return
-      end if
-      call replace_file(path//'.tmp', path, error)
+      ! a failed write is reported (file and reason) by the commit
+      call out%commit(error)
    contains
       subroutine column(v)
          real(wp), intent(in) :: v
-         if (ios /= 0) return
-         write (unit, '(",",es24.16e3)', advance='no', iostat=ios) v
+         write (num, '(",",es24.16e3)') v
+         line = line//trim(num)
       end subroutine column
    end subroutine write_contact_csv
 
@@ -98,10 +95,10 @@ contains
       type(field_selection_t) :: w
       character(len=1), parameter :: nl = new_line('a')
       character(len=:), allocatable :: itype
-      character(len=512) :: msg
       real(wp), allocatable :: xyz(:, :)
       integer(ip), allocatable :: ibuf(:)
-      integer :: unit, ios
+      type(safe_file_t) :: unit
+      integer :: ios
       integer(ip) :: n, k
       logical :: z
       z = .true.
@@ -109,12 +106,9 @@ contains
       if (present(sel)) w = sel
       n = size(tab%node_id)
       itype = int_type_name()
-      open (newunit=unit, file=path//'.tmp', access='stream', form='unformatted', status='replace', &
-            action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
-         return
-      end if
+      call unit%open(path, error)
+      if (allocated(error)) return
+      ios = 0
       call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0"' &
                //vtk_file_attributes(z)//'>'//nl//'<UnstructuredGrid>'//nl &
                //'<Piece NumberOfPoints="'//itoa(int(n, i8))//'" NumberOfCells="'//itoa(int(n, i8))//'">'//nl &
@@ -143,11 +137,6 @@ contains
       call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios, z)
       call put_array(unit, 'type="UInt8" Name="types"', repeat(achar(1), n), ios, z)   ! VTK_VERTEX
       call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
-      close (unit)
-      if (ios /= 0) then
-         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
-         return
-      end if
-      call replace_file(path//'.tmp', path, error)
+      call finish_file(unit, path, ios, error)
    end subroutine write_contact_vtu
 end module vemcontact_output_contact

@@ -1,18 +1,25 @@
 !> HDF5 results file: the mesh once, then one group per step; the layout is
-!> documented in docs/output-format.md.  The file is flushed after every step,
-!> so a run that fails later keeps the completed steps readable.
+!> documented in docs/output-format.md.  The file is written under a unique
+!> temporary name beside its final name (created by src/safe_file.f90 without
+!> following links) and renamed to the final name by `close` only after HDF5
+!> closed it without error and it was fsync'ed; `close` also writes the root
+!> attribute `complete` (1: the run finished).  `discard` (and finalization)
+!> removes the temporary instead: a killed or failed run never leaves a torn
+!> file under the final name.
 !>
 !> This module is an interop spot: the HDF5 Fortran API passes buffers as
 !> `c_ptr` and handles as `hid_t`/`hsize_t`.  Every HDF5 return code is checked
 !> and turned into an `error_t` naming the file and the object; HDF5's own
-!> error printing is switched off, the message we return replaces it.
+!> error printing is switched off, the message we return replaces it (with the
+!> system's reason, such as "No space left on device", read from HDF5's error
+!> stack by src/output/hdf5_shim.c).
 !> Datasets are stored little-endian (`H5T_IEEE_F64LE`, `H5T_STD_I32LE`,
 !> `H5T_STD_I64LE`) whatever the host, and written contiguous and uncompressed:
 !> that is the fastest to write and to read back in slices.
 module vemcontact_output_hdf5
-   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_null_ptr
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_null_ptr, c_char, c_int, c_null_char
    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5lexists_f, h5fcreate_f, h5fclose_f, &
-                   h5fflush_f, h5gcreate_f, h5gopen_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
+                   h5fflush_f, h5ldelete_f, h5gcreate_f, h5gopen_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
                    h5sclose_f, h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, &
                    h5aclose_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
                    h5kind_to_type, H5F_ACC_TRUNC_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, &
@@ -22,6 +29,7 @@ module vemcontact_output_hdf5
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
    use vemcontact_model, only: model_t, string_t
    use vemcontact_output_selection, only: field_selection_t
+   use vemcontact_safe_file, only: create_temporary, publish_file, remove_file
    implicit none
    private
 
@@ -29,13 +37,16 @@ module vemcontact_output_hdf5
    character(len=*), parameter, public :: h5_format_name = 'vemcontact-results'
    integer(ip), parameter, public :: h5_format_version = 1_ip
 
-   !> Writer of one results file.  `open` creates (truncates) it, `write_mesh`
-   !> writes /mesh once, `write_step` adds /steps/NNNN, `close` (or finalization)
-   !> closes it.
+   !> Writer of one results file.  `open` creates its temporary, `write_mesh`
+   !> writes /mesh once, `write_step` adds /steps/NNNN, `discard_step` removes a
+   !> step that could not be completed, `close` puts the file under its name,
+   !> `discard` (or finalization) abandons it.
    type, public :: h5_writer_t
       private
       integer(hid_t) :: file = -1
       character(len=:), allocatable :: path
+      !> the temporary being written, renamed to `path` by `close`
+      character(len=:), allocatable :: tmp
       !> sizes of the mesh written, to check the steps against; -1 before write_mesh
       integer(ip) :: nnode = -1, nelem = -1
    contains
@@ -44,16 +55,19 @@ module vemcontact_output_hdf5
       procedure :: write_step => h5_write_step
       procedure :: write_contact => h5_write_contact
       procedure :: write_iterations => h5_write_iterations
+      procedure :: discard_step => h5_discard_step
       procedure :: write_labels => h5_write_labels
       procedure :: write_results => h5_write_results
       procedure :: close => h5_close
+      procedure :: discard => h5_discard
       procedure :: is_open => h5_is_open
       final :: h5_final
    end type h5_writer_t
 
 contains
 
-   !> Create (or truncate) the file `path`, write the root attributes and /steps.
+   !> Start the file `path` (as a new temporary beside it), write the root
+   !> attributes and /steps.
    subroutine h5_open(self, path, error)
       class(h5_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path
@@ -61,7 +75,7 @@ contains
       integer :: hdferr
       integer(hid_t) :: grp
 
-      call h5_close(self)
+      call h5_discard(self)
       self%path = path
       self%nnode = -1
       self%nelem = -1
@@ -70,9 +84,13 @@ contains
       if (failed(self, hdferr, 'initialising the HDF5 library', error)) return
       call h5eset_auto_f(0, hdferr)
       if (failed(self, hdferr, 'switching off HDF5 error printing', error)) return
-      call h5fcreate_f(path, H5F_ACC_TRUNC_F, self%file, hdferr)
+      call create_temporary(path, self%tmp, error)
+      if (allocated(error)) return
+      ! the temporary was just created empty and exclusively: HDF5 takes it over
+      call h5fcreate_f(self%tmp, H5F_ACC_TRUNC_F, self%file, hdferr)
       if (failed(self, hdferr, 'creating the file', error)) then
          self%file = -1
+         call remove_file(self%tmp)
          return
       end if
       call put_string_attribute(self, self%file, 'format', h5_format_name, error)
@@ -420,20 +438,66 @@ contains
       end if
    end subroutine contact_group
 
-   !> Close the file (nothing if not open).  Without `error`, a failure to close is
-   !> ignored: use the argument where the file's completeness matters.
-   subroutine h5_close(self, error)
+   !> Remove /steps/NNNN if it exists: a step that failed part way, so that the
+   !> file lists only steps complete in every results file.
+   subroutine h5_discard_step(self, istep, error)
       class(h5_writer_t), intent(inout) :: self
-      type(error_t), allocatable, intent(out), optional :: error
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(out) :: error
+      character(len=24) :: buf
       integer :: hdferr
-      type(error_t), allocatable :: err
+      logical :: exists
+      if (.not. check_open(self, 'discard_step', error)) return
+      if (istep <= 9999) then
+         write (buf, '(i4.4)') istep
+      else
+         write (buf, '(i0)') istep
+      end if
+      call h5lexists_f(self%file, '/steps/'//trim(buf), exists, hdferr)
+      if (failed(self, hdferr, 'looking up /steps/'//trim(buf), error)) return
+      if (.not. exists) return
+      call h5ldelete_f(self%file, '/steps/'//trim(buf), hdferr)
+      if (failed(self, hdferr, 'removing the incomplete /steps/'//trim(buf), error)) return
+   end subroutine h5_discard_step
+
+   !> Finish the file: root attribute `complete` (1 when `complete` is true: the
+   !> run finished; 0 by default), close it with HDF5, fsync it and rename it to
+   !> its final name.  On any failure the temporary is removed (no file of that
+   !> name, rather than a torn one) and `error` says why.  Nothing if not open.
+   subroutine h5_close(self, error, complete)
+      class(h5_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: error
+      logical, intent(in), optional :: complete
+      integer :: hdferr
+      integer(ip) :: flag
+      if (self%file < 0) return
+      flag = 0_ip
+      if (present(complete)) then
+         if (complete) flag = 1_ip
+      end if
+      call put_int_attribute(self, self%file, 'complete', flag, error)
+      if (allocated(error)) then
+         call h5_discard(self)
+         return
+      end if
+      call h5fclose_f(self%file, hdferr)
+      self%file = -1
+      if (failed(self, hdferr, 'closing the file', error)) then
+         call remove_file(self%tmp)
+         return
+      end if
+      call publish_file(self%tmp, self%path, error)
+   end subroutine h5_close
+
+   !> Abandon the file: close it (errors ignored) and remove the temporary.
+   subroutine h5_discard(self)
+      class(h5_writer_t), intent(inout) :: self
+      integer :: hdferr
       if (self%file < 0) return
       call h5fclose_f(self%file, hdferr)
       self%file = -1
-      if (failed(self, hdferr, 'closing the file', err)) then
-         if (present(error)) call move_alloc(err, error)
-      end if
-   end subroutine h5_close
+      call remove_file(self%tmp)
+   end subroutine h5_discard
 
    !> True between a successful `open` and `close`.
    pure logical function h5_is_open(self)
@@ -441,10 +505,10 @@ contains
       h5_is_open = self%file >= 0
    end function h5_is_open
 
-   !> A writer going out of scope closes its file.
+   !> A writer going out of scope abandons a file it did not close.
    subroutine h5_final(self)
       type(h5_writer_t), intent(inout) :: self
-      call h5_close(self)
+      call h5_discard(self)
    end subroutine h5_final
 
    ! ---------------------------------------------------------------- helpers
@@ -456,11 +520,27 @@ contains
       character(len=*), intent(in) :: what
       type(error_t), allocatable, intent(inout) :: error
       character(len=16) :: code
+      character(kind=c_char, len=256) :: reason
+      integer :: n
+      interface
+         subroutine c_system_reason(buf, len) bind(C, name='vc_h5_system_reason')
+            import :: c_char, c_int
+            character(kind=c_char), intent(out) :: buf(*)
+            integer(c_int), value :: len
+         end subroutine c_system_reason
+      end interface
       failed = hdferr < 0
       if (.not. failed) return
       write (code, '(i0)') hdferr
-      call fatal_error(error, 'HDF5 error (code '//trim(code)//') '//what//' in '''// &
-                       self%path//'''', err_io)
+      call c_system_reason(reason, int(len(reason), c_int))
+      n = max(0, index(reason, c_null_char) - 1)
+      if (n > 0) then
+         call fatal_error(error, 'error: cannot write '''//self%path//''': '//reason(1:n)// &
+                          ' (HDF5 error '//trim(code)//' '//what//')', err_io)
+      else
+         call fatal_error(error, 'HDF5 error (code '//trim(code)//') '//what//' in '''// &
+                          self%path//'''', err_io)
+      end if
    end function failed
 
    logical function check_open(self, what, error)

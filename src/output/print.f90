@@ -7,11 +7,11 @@
 !> contact values are always listed one by one.
 module vemcontact_output_print
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_error, only: error_t, fatal_error, err_io
+   use vemcontact_error, only: error_t
    use vemcontact_model, only: model_t, output_node, output_element, output_contact, totals_no, totals_only, &
                                find_set
    use vemcontact_contact_table, only: contact_table_t
-   use vemcontact_output_vtu, only: replace_file
+   use vemcontact_safe_file, only: safe_file_t
    implicit none
    private
 
@@ -45,17 +45,14 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(contact_table_t), intent(in), optional :: tab
       character(len=*), parameter :: node_comp(2) = ['1', '2'], elem_comp(4) = ['11', '22', '33', '12']
-      integer :: unit, ios, k, j, ks, c
+      type(safe_file_t) :: out
+      integer :: k, j, ks, c
       integer(ip) :: i, n
       integer(ip), allocatable :: items(:)
-      character(len=512) :: msg
       character(len=:), allocatable :: var, set
-      open (newunit=unit, file=path//'.tmp', status='replace', action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
-         return
-      end if
-      write (unit, '(a)', iostat=ios) 'variable,set,entity,id,component,value'
+      call out%open(path, error)
+      if (allocated(error)) return
+      call out%write('variable,set,entity,id,component,value'//new_line('a'))
       do k = 1, size(model%steps(istep)%outputs)
          associate (r => model%steps(istep)%outputs(k))
             if (.not. r%print .or. .not. allocated(r%fields)) cycle
@@ -127,20 +124,18 @@ contains
             end select
          end associate
       end do
-      close (unit)
-      if (ios /= 0) then
-         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
-         return
-      end if
-      call replace_file(path//'.tmp', path, error)
+      ! a failed write is reported (file and reason) by the commit
+      call out%commit(error)
    contains
       subroutine row(variable, entity, id, component, value)
          character(len=*), intent(in) :: variable, entity, component
          integer(ip), intent(in) :: id
          real(wp), intent(in) :: value
-         if (ios /= 0) return
-         write (unit, '(a,",",a,",",a,",",i0,",",a,",",es24.16e3)', iostat=ios) variable, set, entity, id, &
-            component, value
+         character(len=24) :: idbuf, vbuf
+         write (idbuf, '(i0)') id
+         write (vbuf, '(es24.16e3)') value
+         call out%write(variable//','//set//','//entity//','//trim(idbuf)//','//component//','//vbuf// &
+                        new_line('a'))
       end subroutine row
 
       pure real(wp) function node_value(variable, comp, node)

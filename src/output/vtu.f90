@@ -9,13 +9,12 @@
 !> without polygons.  Second-order elements: see second_order_cells.
 !> The element's own kind is in `/mesh/element_type` of the HDF5 file.
 !>
-!> The file is written with stream access as raw bytes (XML text and base64
-!> payloads), never a formatted write per number, to `path//'.tmp'`, and renamed
-!> to `path` only when complete: a crash leaves the previous file (or none),
-!> never a truncated one.  The rename goes through C's `rename` (atomic on
-!> POSIX file systems), the one interop spot of this module.
+!> The file is written as raw bytes (XML text and base64 payloads), never a
+!> formatted write per number, through `safe_file_t` (src/safe_file.f90): to a
+!> unique temporary beside `path`, every write checked, fsync'ed and renamed to
+!> `path` only when complete, so a crash or a full disk leaves no file of that
+!> name, never a truncated one.
 module vemcontact_output_vtu
-   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
    use vemcontact_model, only: model_t, etype_polygon2, etype_quad8, etype_tri6
@@ -24,10 +23,11 @@ module vemcontact_output_vtu
    use vemcontact_output_zlib, only: zlib_bound, zlib_compress
    use vemcontact_output_xml, only: xml_escape
    use vemcontact_output_selection, only: field_selection_t
+   use vemcontact_safe_file, only: safe_file_t
    implicit none
    private
 
-   public :: write_vtu, replace_file, put, put_array, byte_order, int_type_name, itoa, vtk_file_attributes
+   public :: write_vtu, finish_file, put, put_array, byte_order, int_type_name, itoa, vtk_file_attributes
    public :: vtk_cell_type, full_tensor, tensor_names
 
    !> VTK cell types of the elements.
@@ -58,14 +58,6 @@ module vemcontact_output_vtu
       integer(ip), allocatable :: elem_part(:)  !< (nelem) part (connected body), 1-based
       real(wp) :: time = 0.0_wp                 !< step time: FieldData TimeValue
    end type vtu_extras_t
-
-   interface
-      function c_rename(old, new) bind(C, name='rename') result(rc)
-         import :: c_char, c_int
-         character(kind=c_char), intent(in) :: old(*), new(*)
-         integer(c_int) :: rc
-      end function c_rename
-   end interface
 
 contains
 
@@ -127,14 +119,14 @@ contains
       type(vtu_extras_t), intent(in), optional :: extra
       type(field_selection_t), intent(in), optional :: sel
       type(field_selection_t) :: w
-      character(len=:), allocatable :: tmp, itype
+      character(len=:), allocatable :: itype
       character(len=*), parameter :: s_names = ' NumberOfComponents="9"'//tensor_names
-      character(len=512) :: msg
       real(wp), allocatable :: xyz(:, :), p1(:), p3(:), vm(:)
       integer(ip), allocatable :: ibuf(:)
       character(len=:), allocatable :: types
       integer(ip) :: i
-      integer :: unit, ios
+      type(safe_file_t) :: unit
+      integer :: ios
       logical :: z
       character(len=1), parameter :: nl = new_line('a')
 
@@ -156,13 +148,9 @@ contains
          end if
       end if
       itype = int_type_name()
-      tmp = path//'.tmp'
-      open (newunit=unit, file=tmp, access='stream', form='unformatted', status='replace', &
-            action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//tmp//''' for writing: '//trim(msg), err_io)
-         return
-      end if
+      call unit%open(path, error)
+      if (allocated(error)) return
+      ios = 0
 
       call put(unit, '<?xml version="1.0"?>'//nl &
                //'<VTKFile type="UnstructuredGrid" version="1.0"'//vtk_file_attributes(z) &
@@ -239,17 +227,7 @@ contains
       call put_array(unit, 'type="UInt8" Name="types"', types, ios, z)
       call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
 
-      if (ios /= 0) then
-         close (unit, status='delete', iostat=ios)
-         call fatal_error(error, 'error while writing '''//tmp//'''', err_io)
-         return
-      end if
-      close (unit, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot close '''//tmp//''': '//trim(msg), err_io)
-         return
-      end if
-      call replace_file(tmp, path, error)
+      call finish_file(unit, path, ios, error)
    end subroutine write_vtu
 
    !> The extras have the model's sizes.
@@ -272,7 +250,7 @@ contains
    !> array of one value, the id, named "ELSET:name" or "MATERIAL:name" (meshio
    !> reads them as field_data; VTK XML has string arrays, but meshio cannot read them).
    subroutine put_field_data(unit, model, extra, itype, z, ios)
-      integer, intent(in) :: unit
+      type(safe_file_t), intent(inout) :: unit
       type(model_t), intent(in) :: model
       type(vtu_extras_t), intent(in) :: extra
       character(len=*), intent(in) :: itype
@@ -298,27 +276,36 @@ contains
       call put(unit, '</FieldData>'//new_line('a'), ios)
    end subroutine put_field_data
 
-   !> Rename `from` to `to`, replacing `to` atomically (POSIX rename).
-   subroutine replace_file(from, to, error)
-      character(len=*), intent(in) :: from, to
+   !> Finish a file written with `put`/`put_array`: commit it, which reports a
+   !> failed write (file and reason); a failure that was not a write (`ios` set
+   !> by zlib) discards the temporary and is reported here.
+   subroutine finish_file(unit, path, ios, error)
+      type(safe_file_t), intent(inout) :: unit
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: ios
       type(error_t), allocatable, intent(out) :: error
-      if (c_rename(from//c_null_char, to//c_null_char) /= 0_c_int) then
-         call fatal_error(error, 'cannot rename '''//from//''' to '''//to//'''', err_io)
+      if (ios /= 0 .and. .not. unit%failed()) then
+         call unit%discard()
+         call fatal_error(error, 'error: cannot write '''//path//''': compression failed', err_io)
+         return
       end if
-   end subroutine replace_file
+      call unit%commit(error)
+   end subroutine finish_file
 
-   !> Write text bytes unless an earlier write failed.
+   !> Write text bytes unless an earlier write failed (`ios` becomes non-zero
+   !> once a write has failed).
    subroutine put(unit, text, ios)
-      integer, intent(in) :: unit
+      type(safe_file_t), intent(inout) :: unit
       character(len=*), intent(in) :: text
       integer, intent(inout) :: ios
       if (ios /= 0) return
-      write (unit, iostat=ios) text
+      call unit%write(text)
+      if (unit%failed()) ios = 1
    end subroutine put
 
    !> One binary DataArray, zlib-compressed when `compress`, else raw.
    subroutine put_array(unit, attributes, bytes, ios, compress)
-      integer, intent(in) :: unit
+      type(safe_file_t), intent(inout) :: unit
       character(len=*), intent(in) :: attributes
       character(len=*), intent(in) :: bytes
       integer, intent(inout) :: ios
@@ -338,7 +325,7 @@ contains
    !> first 9-byte piece; the rest goes in pieces of `piece_bytes` (a multiple of
    !> 3), so the text is that of one encoding.
    subroutine put_raw(unit, bytes, ios)
-      integer, intent(in) :: unit
+      type(safe_file_t), intent(inout) :: unit
       character(len=*), intent(in) :: bytes
       integer, intent(inout) :: ios
       character(len=:), allocatable :: buf
@@ -347,7 +334,7 @@ contains
       allocate (character(len=base64_length(max(piece_bytes, 9_i8))) :: buf)
       first = min(1_i8, nb)
       call base64_encode(as_bytes(nb)//bytes(1:first), buf)
-      write (unit, iostat=ios) buf(1:base64_length(8_i8 + first))
+      call put(unit, buf(1:base64_length(8_i8 + first)), ios)
       call put_base64(unit, bytes(first + 1:), buf, ios)
    end subroutine put_raw
 
@@ -356,7 +343,7 @@ contains
    !> (0 when it is full), compressed size of each block] base64-encoded on its
    !> own, then the concatenated zlib streams of the blocks as a second base64 stream.
    subroutine put_compressed(unit, bytes, ios)
-      integer, intent(in) :: unit
+      type(safe_file_t), intent(inout) :: unit
       character(len=*), intent(in) :: bytes
       integer, intent(inout) :: ios
       character(len=:), allocatable :: packed, buf
@@ -383,13 +370,13 @@ contains
       end do
       allocate (character(len=base64_length(max(piece_bytes, 8_i8*size(header, kind=i8)))) :: buf)
       call base64_encode(as_bytes(header), buf)
-      write (unit, iostat=ios) buf(1:base64_length(8_i8*size(header, kind=i8)))
+      call put(unit, buf(1:base64_length(8_i8*size(header, kind=i8))), ios)
       call put_base64(unit, packed(1:pos), buf, ios)
    end subroutine put_compressed
 
    !> Base64 of `bytes` in pieces of `piece_bytes` through the work buffer `buf`.
    subroutine put_base64(unit, bytes, buf, ios)
-      integer, intent(in) :: unit
+      type(safe_file_t), intent(inout) :: unit
       character(len=*), intent(in) :: bytes
       character(len=*), intent(inout) :: buf
       integer, intent(inout) :: ios
@@ -399,7 +386,7 @@ contains
       do while (first <= nb .and. ios == 0)
          last = min(nb, first + piece_bytes - 1)
          call base64_encode(bytes(first:last), buf)
-         write (unit, iostat=ios) buf(1:base64_length(last - first + 1))
+         call put(unit, buf(1:base64_length(last - first + 1)), ios)
          first = last + 1
       end do
    end subroutine put_base64

@@ -273,6 +273,9 @@ def read_h5(path: str) -> RunInfo:
         with h5py.File(f, "r") as h:
             if h.attrs.get("format", b"") not in (b"vemcontact-results", "vemcontact-results"):
                 raise ResultError(f"{f}: not a vemcontact HDF5 result (no format attribute)")
+            if int(np.asarray(h.attrs.get("complete", 1)).reshape(-1)[0]) != 1:
+                raise ResultError(f"{f}: incomplete results: the run that wrote it stopped with an error "
+                                  "(root attribute complete = 0)")
             xy = h["mesh/coordinates"][()]
             ids = h["mesh/node_ids"][()]
             form = h["mesh/element_formulation"][()]

@@ -31,7 +31,7 @@ import sys
 
 import numpy as np
 
-from .results import ResultError, contact_file, read_contact_points, read_vtu, step_files, step_label
+from .results import ResultError, check_complete, contact_file, read_contact_points, read_vtu, step_files, step_label
 from .contour import plot
 
 
@@ -54,9 +54,13 @@ def main(argv=None) -> int:
                    help="values within R of (X, Y) do not set the colour range (repeatable), e.g. a joint tip")
     p.add_argument("-o", "--output", default=None, help="folder for the pictures (default: the result's)")
     p.add_argument("--format", choices=["png", "pdf"], default="png")
+    p.add_argument("--incomplete", action="store_true",
+                   help="plot the steps of a run that did not finish (refused by default)")
     a = p.parse_args(argv)
     try:
         files = step_files(a.result)
+        if not a.incomplete:
+            check_complete(a.result)
         if a.step < 0 or a.step > len(files):
             raise ResultError(f"{a.result}: has {len(files)} steps, no step {a.step}")
         vtu = files[a.step - 1] if a.step else files[-1]

@@ -8,6 +8,7 @@ from __future__ import annotations
 import contextlib
 import io
 import os
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 
@@ -25,6 +26,42 @@ class PolyResult:
     point_data: dict              # name -> (npoints,) or (npoints, k)
     cell_data: dict               # name -> (ncells,) or (ncells, k)
     path: str
+
+
+def job_of(path: str) -> str | None:
+    """The job of a vemcontact .pvd (JOB.pvd) or .vtu (JOB_NNNN.vtu, JOB_contact_NNNN.vtu)."""
+    base = os.path.basename(path)
+    if base.endswith(".pvd"):
+        return base[:-4]
+    m = re.fullmatch(r"(.+?)(_contact)?_(\d+)\.vtu", base)
+    return m.group(1) if m else None
+
+
+def check_complete(path: str) -> None:
+    """Refuse the results of a job whose run did not finish (docs/output-format.md):
+    its JOB.lock exists (written by a vemcontact that marks completion) and its
+    JOB.h5 is missing or has the root attribute complete = 0."""
+    job = job_of(path)
+    if job is None:
+        return
+    folder = os.path.dirname(path)
+    if not os.path.exists(os.path.join(folder, job + ".lock")):
+        return
+    h5 = os.path.join(folder, job + ".h5")
+    hint = "see its log and rerun, or give --incomplete to plot the steps written"
+    if not os.path.exists(h5):
+        raise ResultError(f"{path}: incomplete results: {h5} is missing (the run of {job} is still going, "
+                          f"was killed or could not write it); {hint}")
+    import h5py
+
+    try:
+        with h5py.File(h5, "r") as f:
+            complete = int(np.asarray(f.attrs.get("complete", 1)).reshape(-1)[0])
+    except (OSError, KeyError, ValueError) as exc:
+        raise ResultError(f"{path}: {h5} cannot be read ({' '.join(str(exc).split())}); {hint}") from None
+    if complete != 1:
+        raise ResultError(f"{path}: incomplete results: the run of {job} stopped with an error "
+                          f"({h5} has complete = 0); {hint}")
 
 
 def step_files(path: str) -> list[str]:
