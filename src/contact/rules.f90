@@ -237,20 +237,8 @@ contains
    pure logical function same_key(key, contact) result(same)
       type(matrix_key_t), intent(in) :: key
       type(contact_state_t), intent(in) :: contact
-      integer :: i
-      same = allocated(key%active)
-      if (.not. same) return
-      same = size(key%active) == contact%n
-      if (.not. same) return
-      same = all(key%active .eqv. contact%active)
-      if (.not. same) return
-      do i = 1, contact%n
-         if (.not. contact%active(i)) cycle
-         ! bitwise the same numbers: the matrix assembled from them is the same
-         same = key%iseg(i) == contact%iseg(i) .and. identical(key%xi(i), contact%xi(i)) .and. &
-                identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i)))
-         if (.not. same) return
-      end do
+      ! the same numbers: the matrix assembled from them is the same
+      same = near_key(key, contact, 0.0_wp)
    end function same_key
 
    !> Whether the contact part of the matrix is close to that of `key`: the same
