@@ -12,6 +12,7 @@ module vemcontact_driver_static
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_assembly, only: element_stresses
    use vemcontact_post_stress, only: nodal_average
+   use vemcontact_post_estimate, only: error_estimate_t, estimate_error
    use vemcontact_output_vtu, only: write_vtu
    use vemcontact_output_pvd, only: write_pvd
    use vemcontact_output_hdf5, only: h5_writer_t
@@ -45,6 +46,7 @@ contains
       type(load_state_t) :: st
       type(contact_state_t) :: contact
       type(contact_table_t) :: tab
+      type(error_estimate_t) :: est
       integer, allocatable :: parts(:)
       integer :: ip_
       type(h5_writer_t) :: h5
@@ -154,16 +156,20 @@ contains
          t0 = wall_time()
          call element_stresses(model, u, s_elem)
          call nodal_average(model, s_elem, s_node)
+         call estimate_error(model, s_elem, est)
+         call log%phase('estimate', wall_time() - t0)
+         call say_estimate(est)
+         t0 = wall_time()
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)
          call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
-                        s_elem, s_node, error)
+                        s_elem, s_node, error, est%indicator)
          if (allocated(error)) return
          vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
          times = [times, real(istep, wp)]
          parts = [parts, 0]
          call h5%write_step(istep, name, real(istep, wp), reshape(u_out, [2, int(model%nnode)]), &
-                            s_elem, s_node, error)
+                            s_elem, s_node, error, est%indicator, est%estimate, est%energy)
          if (allocated(error)) return
          if (contact%n > 0) then
             ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per pair
@@ -209,6 +215,38 @@ contains
       call log%say('  '//base//'.pvd')
       call log%say('  '//base//'.h5')
    contains
+      !> "estimated relative energy error 2.3 %; 50 % of it in 4.1 % of the cells, around (x, y)"
+      subroutine say_estimate(e)
+         type(error_estimate_t), intent(in) :: e
+         character(len=16) :: b
+         if (.not. (e%estimate > 0.0_wp)) then
+            call log%say('  estimated relative energy error 0 %')
+            return
+         end if
+         write (b, '(f6.1)') 100.0_wp*e%half_fraction
+         call log%say('  estimated relative energy error '//number(100.0_wp*e%relative, 3)//' %; 50 % of it in '// &
+                      trim(adjustl(b))//' % of the cells, around ('//number(e%largest_at(1), 5)//', '// &
+                      number(e%largest_at(2), 5)//')')
+      end subroutine say_estimate
+
+      !> A value with `digits` significant digits, fixed-point from 1e-3 to 1e5, else exponential.
+      function number(v, digits) result(s)
+         real(wp), intent(in) :: v
+         integer, intent(in) :: digits
+         character(len=:), allocatable :: s
+         character(len=32) :: b
+         character(len=16) :: f
+         if (abs(v) >= 1.0e-3_wp .and. abs(v) < 1.0e5_wp) then
+            write (f, '(a,i0,a)') '(f24.', max(0, digits - 1 - floor(log10(abs(v)))), ')'
+         else if (abs(v) > 0.0_wp) then
+            write (f, '(a,i0,a)') '(es24.', digits - 1, ')'
+         else
+            f = '(f3.1)'
+         end if
+         write (b, f) v
+         s = trim(adjustl(b))
+      end function number
+
       function step_name(i) result(s)
          integer, intent(in) :: i
          character(len=:), allocatable :: s

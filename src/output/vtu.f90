@@ -41,14 +41,16 @@ contains
 
    !> Write the mesh with displacements and stresses to the .vtu file `path`.
    !> Point data: U (3 comps, z = 0), S (xx,yy,zz,xy averaged at nodes), S1, S3,
-   !> MISES, NODE_ID; cell data: S (element stress), MATERIAL, ELEMENT_ID.
-   subroutine write_vtu(path, model, u, s_elem, s_node, error)
+   !> MISES, NODE_ID; cell data: S (element stress), MATERIAL, ELEMENT_ID and, when
+   !> given, ERROR_INDICATOR (vemcontact_post_estimate).
+   subroutine write_vtu(path, model, u, s_elem, s_node, error, indicator)
       character(len=*), intent(in) :: path
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:, :)        !< (2, nnode)
       real(wp), intent(in) :: s_elem(:, :)   !< (4, nelem)
       real(wp), intent(in) :: s_node(:, :)   !< (4, nnode)
       type(error_t), allocatable, intent(out) :: error
+      real(wp), intent(in), optional :: indicator(:)  !< (nelem) error indicator per cell
       character(len=:), allocatable :: tmp, itype
       character(len=*), parameter :: s_names = ' ComponentName0="XX" ComponentName1="YY"' &
                                       //' ComponentName2="ZZ" ComponentName3="XY"'
@@ -66,6 +68,13 @@ contains
          call fatal_error(error, 'write_vtu: array shapes do not match the model ('//path//')', &
                           err_internal)
          return
+      end if
+      if (present(indicator)) then
+         if (size(indicator) /= model%nelem) then
+            call fatal_error(error, 'write_vtu: indicator size does not match the model ('//path//')', &
+                             err_internal)
+            return
+         end if
       end if
       itype = int_type_name()
       tmp = path//'.tmp'
@@ -109,6 +118,8 @@ contains
       ibuf = int(model%elem_mat(1:model%nelem), ip)
       call put_array(unit, 'type="'//itype//'" Name="MATERIAL"', as_bytes(ibuf), ios)
       call put_array(unit, 'type="'//itype//'" Name="ELEMENT_ID"', as_bytes(model%elem_id(1:model%nelem)), ios)
+      if (present(indicator)) &
+         call put_array(unit, 'type="Float64" Name="ERROR_INDICATOR"', as_bytes(indicator(1:model%nelem)), ios)
       call put(unit, '</CellData>'//nl, ios)
 
       ! geometry: z = 0
