@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 
 import numpy as np
 
@@ -518,8 +519,10 @@ three finest levels is extrapolated and marked as such.
                                                              and str(r.get("status", "ok")) == "ok"],
                                                             "contact_iterations")))
     parts.append(SUMMARY_TEMPLATE)
+    sys.path.insert(0, os.path.join(ROOT, "bench", "adapt"))
+    import section as adaptive                       # the adaptive section (bench/adapt/dam.py's results)
     with open(doc, "w") as f:
-        f.write("\n".join(parts))
+        f.write(adaptive.insert("\n".join(parts), adaptive.section()))
     print(f"wrote {doc} and {len(case_names)} figures in {figdir}")
 
 

@@ -218,14 +218,12 @@ contains
       !> "estimated relative energy error 2.3 %; 50 % of it in 4.1 % of the cells, around (x, y)"
       subroutine say_estimate(e)
          type(error_estimate_t), intent(in) :: e
-         character(len=16) :: b
          if (.not. (e%estimate > 0.0_wp)) then
             call log%say('  estimated relative energy error 0 %')
             return
          end if
-         write (b, '(f6.1)') 100.0_wp*e%half_fraction
          call log%say('  estimated relative energy error '//number(100.0_wp*e%relative, 3)//' %; 50 % of it in '// &
-                      trim(adjustl(b))//' % of the cells, around ('//number(e%largest_at(1), 5)//', '// &
+                      number(100.0_wp*e%half_fraction, 2)//' % of the cells, around ('//number(e%largest_at(1), 5)//', '// &
                       number(e%largest_at(2), 5)//')')
       end subroutine say_estimate
 
