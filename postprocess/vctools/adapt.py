@@ -214,8 +214,9 @@ def refined_scene(scene, centroids, area, factor, field_path):
 
 
 def adapt(deck, scene_path, target, out_dir, max_unknowns=1_000_000, max_cycles=10, theta=0.5,
-          uniform=False, exe=None, include=None, processes=1, echo=print):
-    """Run the adaptive loop; returns the table rows (dicts)."""
+          uniform=False, exe=None, include=None, processes=1, lloyd=None, echo=print):
+    """Run the adaptive loop; returns the table rows (dicts).  `lloyd`: Lloyd iterations of
+    the refined cycles' meshes (default: the scene's)."""
     deck = Path(deck).resolve()
     if not deck.is_file():
         raise AdaptError(f"deck not found: {deck}")
@@ -271,6 +272,8 @@ def adapt(deck, scene_path, target, out_dir, max_unknowns=1_000_000, max_cycles=
             echo(f"stopped after {max_cycles} cycles")
             break
         scene = refined_scene(scene0, cen, area, factor, cdir / "size.npz")
+        if lloyd is not None:
+            scene.setdefault("mesh", {})["lloyd"] = int(lloyd)
     return rows
 
 
@@ -296,6 +299,7 @@ def _parser():
     p.add_argument("-o", "--output", help="output folder (default: DECK_adapt next to the deck)")
     p.add_argument("--exe", help="vemcontact executable (default: VEMCONTACT_EXE, PATH, the build tree)")
     p.add_argument("--processes", type=int, default=1, help="mesher worker processes (default 1)")
+    p.add_argument("--lloyd", type=int, help="Lloyd iterations of the refined meshes (default: the scene's [mesh] lloyd)")
     return p
 
 
@@ -307,7 +311,7 @@ def main(argv=None):
         out = a.output or str(Path(a.deck).with_suffix("")) + "_adapt"
         adapt(a.deck, a.scene, parse_fraction(a.target_error), out, max_unknowns=a.max_unknowns,
               max_cycles=a.max_cycles, theta=a.theta, uniform=a.uniform, exe=a.exe, include=a.include,
-              processes=a.processes)
+              processes=a.processes, lloyd=a.lloyd)
     except (AdaptError, MeshError) as e:
         print(f"vc-adapt: error: {e}", file=sys.stderr)
         return 2
