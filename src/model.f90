@@ -10,12 +10,17 @@ module vemcontact_model
    public :: model_t, named_set_t, material_t, section_t, step_t
    public :: dof_value_t, dload_t, string_t, source_loc_t
    public :: surface_t, interaction_t, contact_pair_t, contact_controls_t, output_request_t
-   public :: find_set, location_string, output_requested
+   public :: find_set, location_string, output_requested, element_order, element_side
 
    !> Element topology
    integer, parameter, public :: etype_polygon = 1 !< VPE/VPS: any number of nodes
    integer, parameter, public :: etype_quad4 = 2   !< CPE4/CPS4
    integer, parameter, public :: etype_tri3 = 3    !< CPE3/CPS3
+   !> Second-order elements: corner nodes first, then one node per side
+   !> (node n+k on side k, from corner k to corner k+1), Abaqus' order
+   integer, parameter, public :: etype_polygon2 = 4 !< VPE2/VPS2: second-order polygon, 2n nodes
+   integer, parameter, public :: etype_quad8 = 5    !< CPE8/CPS8: serendipity quad
+   integer, parameter, public :: etype_tri6 = 6     !< CPE6/CPS6: quadratic triangle
    !> Plane assumption
    integer, parameter, public :: plane_strain = 1
    integer, parameter, public :: plane_stress = 2
@@ -171,8 +176,8 @@ module vemcontact_model
    !> cannot compute are left out (with a warning when the deck is read).
    type :: output_request_t
       integer :: category = 0                 !< output_node, output_element or output_contact
-      !> a *... PRINT request (CalculiX writes it to its .dat file; vemcontact to the log and
-      !> HDF5), else a result-file request (*... FILE, *... OUTPUT: VTU and HDF5)
+      !> a *... PRINT request (CalculiX writes it to its .dat file; vemcontact to
+      !> JOB_print_NNNN.csv), else a result-file request (*... FILE, *... OUTPUT: VTU, HDF5, CSV)
       logical :: print = .false.
       character(len=:), allocatable :: set    !< NSET= or ELSET= (upper case), '' = the whole model
       integer :: totals = totals_no           !< TOTALS= of a PRINT request
@@ -245,6 +250,40 @@ module vemcontact_model
    end type model_t
 
 contains
+
+   !> Polynomial order of an element type: 2 for the second-order types (whose
+   !> nodes are the corners, then one node per side), 1 otherwise.
+   pure integer function element_order(etype)
+      integer, intent(in) :: etype
+      select case (etype)
+      case (etype_polygon2, etype_quad8, etype_tri6)
+         element_order = 2
+      case default
+         element_order = 1
+      end select
+   end function element_order
+
+   !> Nodes of side k of element e: (corner k, corner k+1, side node or 0 for
+   !> a first-order element); the element has nsides sides (its corners).
+   pure subroutine element_side(model, e, k, abc, nsides)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: e
+      integer, intent(in) :: k
+      integer(ip), intent(out) :: abc(3)
+      integer, intent(out) :: nsides
+      integer(ip) :: p0
+      integer :: n, order
+      p0 = model%elem_ptr(e)
+      n = model%elem_ptr(e + 1) - p0
+      order = 1
+      if (allocated(model%elem_type)) order = element_order(model%elem_type(e))
+      nsides = n/order
+      abc = 0
+      if (k < 1 .or. k > nsides) return
+      abc(1) = model%elem_conn(p0 + k - 1)
+      abc(2) = model%elem_conn(p0 + mod(k, nsides))
+      if (order == 2) abc(3) = model%elem_conn(p0 + nsides + k - 1)
+   end subroutine element_side
 
    !> Index of the set called `name` (case-insensitive, caller passes upper case), 0 if absent.
    pure function find_set(sets, name) result(k)

@@ -53,7 +53,7 @@ def test_big_cell_continues_lines_and_ids(tmp_path):
 def test_paper_scenes_write_consistent_decks(tmp_path):
     assert main(["paper", "--scenes", str(SCENES), "-o", str(tmp_path)]) == 0
     files = sorted(tmp_path.glob("*.inp"))
-    assert len(files) == 18 + 6 + 7 + 1
+    assert len(files) == 18 + 18 + 6 + 7 + 1        # example 1: first and second order
     total = 0
     for f in files:
         text = f.read_text()
@@ -83,7 +83,10 @@ def test_paper_scenes_write_consistent_decks(tmp_path):
                 for r in b[1]:
                     assert len(r) == 1
                     assert r[0] in nsets or int(r[0]) in nodes
-        if "fem" in f.name or "quad" in f.name or "tri" in f.name:
+        if "fem2" in f.name or "vem2" in f.name:
+            types = re.findall(r"TYPE=(\w+), ELSET", text)
+            assert set(types) == ({"CPE8"} if "fem2" in f.name else {"VPE2"})
+        elif "fem" in f.name or "quad" in f.name or "tri" in f.name:
             types = re.findall(r"TYPE=(\w+), ELSET", text)
             assert set(types) <= ({"CPE4", "CPE3"} if "fem" in f.name else {"VPE"})
     assert total < 5_000_000
@@ -209,3 +212,97 @@ def test_selection_missing_its_face_is_an_error(tmp_path):
         add_selection(mesh(), "HALF", {"segment": [[0, 0], [0, 2]]}, 1e-9)
     m = add_selection(mesh(), "LEFT", {"x": 0.0}, 1e-9)
     assert len(m.esurfaces["LEFT"][0]) == 2
+
+
+MSH2 = """$MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+1 1 "bottom"
+2 2 "plate"
+$EndPhysicalNames
+$Entities
+0 1 1 0
+1 0 0 0 2 0 0 1 1 0
+1 0 0 0 2 1 0 1 2 0
+$EndEntities
+$Nodes
+1 8 1 8
+2 1 0 8
+1
+2
+3
+4
+5
+6
+7
+8
+0 0 0
+2 0 0
+2 1 0
+0 1 0
+1 0 0
+2 0.5 0
+1 1 0
+0 0.5 0
+$EndNodes
+$Elements
+2 2 1 2
+1 1 8 1
+1 1 2 5
+2 1 16 1
+2 CELL
+$EndElements
+"""
+
+
+def test_gmsh_second_order_import(tmp_path):
+    """8-node quads and 3-node lines: corners in conn, side nodes in side_nodes (at
+    the middles here), a clockwise cell reversed with its side nodes re-paired, the
+    bottom node set with its side node, and CPE8 in the deck."""
+    for cell in ("1 2 3 4 5 6 7 8", "1 4 3 2 8 7 6 5"):      # counter-clockwise, clockwise
+        p = tmp_path / "q8.msh"
+        p.write_text(MSH2.replace("CELL", cell))
+        m = read_msh(p)
+        assert m.ncell == 1 and m.side_nodes is not None and m.cell_areas()[0] == 2.0
+        a, b, _, _ = m.edges()
+        assert np.allclose(m.nodes[m.side_nodes], 0.5 * (m.nodes[a] + m.nodes[b]))
+        assert np.allclose(m.nodes[m.nsets["bottom"], 1], 0) and len(m.nsets["bottom"]) == 3
+        assert main(["gmsh", str(p), "-o", str(tmp_path / "q8.inp"), "--formulation", "fem"]) == 0
+        text = (tmp_path / "q8.inp").read_text()
+        assert "*ELEMENT, TYPE=CPE8, ELSET=plate" in text
+        line = text.split("*ELEMENT, TYPE=CPE8, ELSET=plate\n")[1].splitlines()[0]
+        assert len(line.split(",")) == 9       # id, 4 corners, 4 side nodes
+
+
+@pytest.mark.parametrize("fmt,binary", [("gmsh22", False), ("gmsh22", True), ("gmsh", False), ("gmsh", True)])
+def test_gmsh_second_order_formats(tmp_path, fmt, binary):
+    """6-node triangles and 3-node lines written by meshio in every Gmsh format: corners
+    in conn, side nodes at the middles of their sides, a clockwise cell reversed with its
+    side nodes re-paired, the physical curve's node set with its middle node, and CPE6
+    in the deck."""
+    import meshio
+    pts = np.array([[0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0],
+                    [1, 0, 0], [2, 0.5, 0], [1, 0.5, 0], [1, 1, 0], [0, 0.5, 0]], float)
+    tri6 = np.array([[0, 1, 2, 4, 5, 6], [0, 3, 2, 8, 7, 6]])    # counter-clockwise, clockwise
+    cells = [("line3", np.array([[0, 1, 4]])), ("triangle6", tri6)]
+    cd = {"gmsh:physical": [np.array([1]), np.array([2, 2])],
+          "gmsh:geometrical": [np.array([1]), np.array([1, 1])]}
+    fd = {"bottom": np.array([1, 1]), "plate": np.array([2, 2])}
+    mesh = meshio.Mesh(pts, cells, cell_data=cd, field_data=fd)
+    if fmt == "gmsh":
+        mesh.point_data["gmsh:dim_tags"] = np.array([[0, 1], [0, 2], [0, 3], [0, 4],
+                                                     [1, 1], [2, 1], [2, 1], [2, 1], [2, 1]])
+    p = tmp_path / "t6.msh"
+    meshio.write(p, mesh, file_format=fmt, binary=binary)
+    m = read_msh(p)
+    assert m.ncell == 2 and m.side_nodes is not None and np.allclose(m.cell_areas(), [1.0, 1.0])
+    a, b, _, _ = m.edges()
+    assert np.allclose(m.nodes[m.side_nodes], 0.5 * (m.nodes[a] + m.nodes[b]))
+    assert np.allclose(m.nodes[m.nsets["bottom"], 1], 0) and len(m.nsets["bottom"]) == 3
+    assert len(m.esurfaces["bottom"][0]) == 1
+    assert main(["gmsh", str(p), "-o", str(tmp_path / "t6.inp"), "--formulation", "fem"]) == 0
+    text = (tmp_path / "t6.inp").read_text()
+    line = text.split("*ELEMENT, TYPE=CPE6, ELSET=plate\n")[1].splitlines()[0]
+    assert len(line.split(",")) == 7       # id, 3 corners, 3 side nodes

@@ -131,7 +131,9 @@ def read_estimate(h5path):
         for key in sorted(f["steps"]):
             g = f["steps"][key]
             if "ERROR_INDICATOR" not in g:
-                raise AdaptError(f"{h5path}: step {key} has no ERROR_INDICATOR (vemcontact too old?)")
+                raise AdaptError(f"{h5path}: step {key} has no ERROR_INDICATOR (the deck's output requests "
+                                 "leave out S (add S under *EL FILE), or the model has second-order "
+                                 "elements, which get no estimate)")
             est, en = float(g.attrs["error_estimate"]), float(g.attrs["energy_norm"])
             rel = est / math.hypot(est, en) if est > 0 else 0.0
             name = g.attrs["name"]

@@ -19,6 +19,7 @@ module vemcontact_app_cli
       logical :: version = .false.
       logical :: quiet = .false.
       logical :: write_matrix = .false.
+      logical :: compress_vtu = .true.           !< zlib-compressed .vtu arrays (--raw-vtu: not)
       integer :: ordering = ordering_auto
    end type cli_t
 
@@ -37,6 +38,8 @@ contains
           '  --ordering METHOD     fill-reducing ordering: auto (default), metis (METIS on'//nl// &
           '                        the node graph), cholmod (CHOLMOD''s default strategy)'//nl// &
           '  --write-matrix        also write the first step''s matrix as JOB.mtx (Matrix Market)'//nl// &
+          '  --raw-vtu             write the .vtu arrays uncompressed (default: zlib, as VTK''s'//nl// &
+          '                        vtkZLibDataCompressor)'//nl// &
           '  -q, --quiet           log to JOB.log only'//nl// &
           '  -h, --help            show this help'//nl// &
           '  --version             show the version'
@@ -66,6 +69,8 @@ contains
             cli%quiet = .true.
          case ('--write-matrix')
             cli%write_matrix = .true.
+         case ('--raw-vtu')
+            cli%compress_vtu = .false.
          case ('-o', '--output', '--ordering')
             if (i == n) then
                call fatal_error(error, 'error: option '//arg//' needs a value (see vemcontact --help)', err_input)

@@ -1,4 +1,8 @@
-!> The vemcontact program: command line, log, deck, analysis, exit status.
+!> The vemcontact program: command line, results folder, log, deck, analysis,
+!> exit status.  Before anything in the results folder is touched the job's lock
+!> JOB.lock is taken (a second run of the job into the same folder stops with
+!> exit status 2 and changes nothing); then the previous run's result files of
+!> the job are removed, so that none of them can be taken for this run's.
 !> Exit status: 0 success, 1 bad input, 2 file error, 3 model not solvable,
 !> 4 solver failure, 5 internal error.
 program vemcontact_main
@@ -9,6 +13,8 @@ program vemcontact_main
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    use vemcontact_app_process, only: exit_process, make_directory
+   use vemcontact_safe_file, only: job_lock_t, lock_job, remove_job_files
+   use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
@@ -18,8 +24,9 @@ program vemcontact_main
    type(logger_t) :: log
    type(model_t) :: model
    type(run_options_t) :: opts
+   type(job_lock_t) :: lock
    real(wp) :: t0, tstart
-   integer :: iw
+   integer :: nremoved, iw
 
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
@@ -34,6 +41,11 @@ program vemcontact_main
 
    tstart = wall_time()
    call make_directory(cli%out_dir, error)
+   if (allocated(error)) call fail(error)
+   ! held until the process ends
+   call lock_job(cli%out_dir//'/'//cli%job//'.lock', lock, error)
+   if (allocated(error)) call fail(error)
+   call remove_job_files(cli%out_dir, cli%job, nremoved, error)
    if (allocated(error)) call fail(error)
    log%quiet = cli%quiet
    call log%open(cli%out_dir//'/'//cli%job//'.log', error)
@@ -53,10 +65,12 @@ program vemcontact_main
    opts%job = cli%job
    opts%ordering = cli%ordering
    opts%write_matrix = cli%write_matrix
+   opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)
    call log%phase('total', wall_time() - tstart)
-   call log%close()
+   call log%close(error)
+   if (allocated(error)) call fail(error)
    call exit_process(0)
 
 contains
@@ -64,9 +78,10 @@ contains
    !> Report the error on stderr and in the log, then end with its status.
    subroutine fail(err)
       type(error_t), intent(in) :: err
-      write (error_unit, '(a)') err%message
+      write (error_unit, '(a)') escape_controls(err%message)
       if (log%opened) then
-         write (log%unit, '(a)') err%message
+         log%quiet = .true.
+         call log%say(err%message)
          call log%close()
       end if
       call exit_process(err%code)

@@ -6,14 +6,14 @@
 !> field, the springs that hold bodies, and the table written as results.
 !>
 !> Kinematics (small strain, docs/contact-formulation.md): the pairing (segment,
-!> xi, n) is found in the current configuration x + u; with it frozen the gap is
-!> linear in u, g = g0 + n.A(xi) u with g0 = n.(X_s - X_xi) from the reference
+!> xi) is found in the current configuration x + u, so that it follows the sliding;
+!> the normal n is the master segment's normal in the reference configuration, as
+!> small strain has no finite rotations.  With the pairing frozen the gap is linear
+!> in u, g = g0 + n.A(xi) u with g0 = n.(X_s - X_xi) from the reference
 !> coordinates, so an iteration with a fixed active set and pairing is one linear
-!> solve.  A slave node is active when g <= 0 (H(-g) of the paper, so surfaces
-!> that touch initially, as the Hertz disc, start closed).  Once the active set
-!> holds, the matrix and right-hand side also carry the geometric part of the
-!> contact stiffness, so that the iteration on the pairing (which follows u) is a
-!> Newton iteration rather than a fixed point (docs/contact-robustness.md).
+!> solve, and the iteration on the pairing is a fixed point that only the sliding
+!> moves (docs/contact-robustness.md).  A slave node is active when g <= 0 (H(-g)
+!> of the paper, so surfaces that touch initially, as the Hertz disc, start closed).
 module vemcontact_contact_active_set
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
@@ -22,8 +22,9 @@ module vemcontact_contact_active_set
    use vemcontact_contact_insertion, only: insert_interface_nodes
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
                                         contact_graph_pairs, median
-   use vemcontact_contact_geometry, only: relative_map, contact_stiffness, contact_geometric_stiffness, &
-                                          project_point_segment, seg_ok, length2, contact_slip
+   use vemcontact_contact_geometry, only: relative_map, contact_stiffness, project_point_segment, seg_ok, &
+                                          length2, contact_slip, segment_normal, segment_is_degenerate, &
+                                          projection_gradient, sliding_tangent
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_contact_spring, only: spring_t
@@ -48,16 +49,6 @@ module vemcontact_contact_active_set
    !> ones (docs/stability-contact.md).  A gap of a few ulps of the coordinates is
    !> not representable geometry; overclosures from displacements are not affected.
    real(wp), parameter, public :: gap0_roundoff = 16.0_wp
-
-   !> The geometric part of the contact stiffness (contact_geometric_stiffness) is
-   !> indefinite, with eigenvalues up to about +-2 k |g| / l.  It is taken in full
-   !> while 2 k |g| / l stays below this fraction of E * thickness (the smallest over
-   !> the pair's elements), the order of a node's elastic stiffness, so that the
-   !> matrix stays positive definite; beyond, it is scaled down to that bound.  Any
-   !> weight gives the same converged solution (the right-hand side carries the
-   !> same term): only the convergence rate depends on it.  Large k |g| / l occur in
-   !> the first iterations of a curved contact, when one node carries the load.
-   real(wp), parameter, public :: geometric_bound = 0.25_wp
 
    !> Augmentation stiffness of HARD contact, K h / E with h the median master
    !> segment and E t the smallest modulus times thickness of the pair: the
@@ -127,14 +118,10 @@ module vemcontact_contact_active_set
       real(wp), allocatable :: balanced(:)
       integer(ip), allocatable :: iseg(:)      !< chosen segment (index into its pair's seg), 0 if none
       real(wp), allocatable :: xi(:), gap(:), gap0(:), normal(:, :)
-      real(wp), allocatable :: seglen(:)       !< current length of the chosen segment
-      !> weight of the geometric stiffness (0 .. 1, geometric_bound) and its
-      !> right-hand side weight * K_geo u at the displacements of the pairing
-      real(wp), allocatable :: geo_weight(:), geo_rhs(:, :)
-      !> the driver switches the geometric part off for the rest of a step when a
-      !> Newton step did not lower the residual or lost positive definiteness (then
-      !> the iteration is the frozen-pairing fixed point of session 1)
-      logical :: geometric_off = .false.
+      !> finite sliding: c = n.t and w = dxi/du of the pairing (sliding_tangent), for
+      !> the part of the tangent that the motion of the projection adds (w = 0 where
+      !> the pairing is fixed)
+      real(wp), allocatable :: slide_c(:), slide_w(:, :)
       logical, allocatable :: active(:)
       !> the entry had a master segment at the start of the step and has none at its
       !> end: it slid past the end of an open master surface (set by the driver)
@@ -146,18 +133,18 @@ module vemcontact_contact_active_set
       procedure :: graph_pairs
       procedure :: project
       procedure :: update_active
-      procedure :: set_geometric
       procedure :: add_stiffness
       procedure :: add_rhs
       procedure :: forces
       procedure :: frozen_gaps
-      procedure :: newton
       procedure :: has_hard
       procedure :: augment
       procedure :: start_state
       procedure :: normal_force
       procedure :: set_balanced
       procedure :: linear_forces
+      procedure :: tangent_times
+      procedure :: has_sliding
       procedure :: springs
       procedure :: table
       procedure :: max_penetration
@@ -358,8 +345,8 @@ contains
       allocate (self%iseg(n), source=0_ip)
       allocate (self%xi(n), self%gap(n), self%gap0(n), source=0.0_wp)
       allocate (self%normal(2, n), source=0.0_wp)
-      allocate (self%seglen(n), self%geo_weight(n), source=0.0_wp)
-      allocate (self%geo_rhs(6, n), source=0.0_wp)
+      allocate (self%slide_c(n), source=0.0_wp)
+      allocate (self%slide_w(6, n), source=0.0_wp)
       allocate (self%active(n), source=.false.)
       allocate (self%lambda(n), source=0.0_wp)
       allocate (self%k_full(n), source=0.0_wp)
@@ -443,7 +430,7 @@ contains
             end if
             if (pd%small_sliding .and. pd%paired) then
                ! the pairing stays that of the undeformed state: only the gaps move,
-               ! linearly in u, so the frozen stiffness is exact (no geometric part)
+               ! linearly in u, so the frozen stiffness is exact
                do i = lo, hi
                   if (self%iseg(i) /= 0) self%gap(i) = frozen_gap(self, i, u)
                end do
@@ -458,13 +445,17 @@ contains
                                   self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
             do i = lo, hi
                call keep_previous(i, prev(i - lo + 1))
-               self%geo_weight(i) = 0.0_wp
-               self%geo_rhs(:, i) = 0.0_wp
                if (self%iseg(i) == 0) cycle
                a = pd%seg(1, self%iseg(i))
                b = pd%seg(2, self%iseg(i))
+               ! the reference segment's normal (a segment of zero length in the mesh
+               ! keeps the current one: the search found it a direction)
+               if (.not. segment_is_degenerate(model%x(:, a), model%x(:, b))) &
+                  self%normal(:, i) = segment_normal(model%x(:, a), model%x(:, b))
                call reference_gap(i, a, b)
-               if (.not. pd%small_sliding) call geometric_term(i, a, b)
+               self%slide_c(i) = 0.0_wp
+               self%slide_w(:, i) = 0.0_wp
+               if (.not. pd%small_sliding) call sliding_terms(i, a, b)
             end do
             pd%paired = .true.
          end associate
@@ -476,8 +467,6 @@ contains
          integer :: i
          do i = lo, hi
             self%iseg(i) = self%pairs(p)%nn_seg(i - lo + 1)
-            self%geo_weight(i) = 0.0_wp
-            self%geo_rhs(:, i) = 0.0_wp
             if (self%iseg(i) == 0) cycle
             self%xi(i) = self%pairs(p)%nn_xi(i - lo + 1)
             self%normal(:, i) = self%pairs(p)%nn_normal(:, i - lo + 1)
@@ -502,32 +491,15 @@ contains
          self%gap(i) = frozen_gap(self, i, u)
       end subroutine reference_gap
 
-      !> Weight and right-hand side of the geometric stiffness of entry i paired
-      !> with the segment a -> b: the pairing follows u, and without this part of
-      !> the Jacobian the iteration on the pairing is a fixed point whose rate
-      !> degrades on fine meshes (docs/contact-robustness.md).
-      subroutine geometric_term(i, a, b)
+      !> c = n.(u_b - u_a) and w = dxi/du of entry i on the segment a -> b at u, for
+      !> the sliding part of the tangent (sliding_tangent, tangent_times); the
+      !> reference segment is normal to n, so that c = n.t of the current one.
+      subroutine sliding_terms(i, a, b)
          integer, intent(in) :: i
          integer(ip), intent(in) :: a, b
-         real(wp) :: f, kg(6, 6), ue(6)
-         self%seglen(i) = length2(current(b) - current(a))
-         self%geo_weight(i) = 0.0_wp
-         self%geo_rhs(:, i) = 0.0_wp
-         if (self%geometric_off) return
-         if (.not. (self%gap(i) < 0.0_wp .and. self%seglen(i) > 0.0_wp)) return
-         associate (pd => self%pairs(self%pair(i)))
-            f = 2.0_wp*self%k(i)*abs(self%gap(i))/self%seglen(i)
-            if (f <= geometric_bound*pd%stiffness) then
-               self%geo_weight(i) = 1.0_wp
-            else
-               self%geo_weight(i) = geometric_bound*pd%stiffness/f
-            end if
-         end associate
-         kg = self%geo_weight(i)*contact_geometric_stiffness(self%xi(i), self%normal(:, i), self%seglen(i), &
-                                                              self%k(i), self%gap(i))
-         ue = [u(2*self%node(i) - 1:2*self%node(i)), u(2*a - 1:2*a), u(2*b - 1:2*b)]
-         self%geo_rhs(:, i) = matmul(kg, ue)
-      end subroutine geometric_term
+         self%slide_c(i) = dot_product(self%normal(:, i), u(2*b - 1:2*b) - u(2*a - 1:2*a))
+         self%slide_w(:, i) = projection_gradient(self%xi(i), current(self%node(i)), current(a), current(b))
+      end subroutine sliding_terms
 
       subroutine keep_previous(i, iprev)
          integer, intent(in) :: i
@@ -544,8 +516,6 @@ contains
          if (dist > radius) return          ! no longer a candidate: the pattern may not hold it
          self%iseg(i) = iprev
          self%xi(i) = xi
-         self%gap(i) = gap
-         self%normal(:, i) = normal
       end subroutine keep_previous
 
       !> x + u of model node j
@@ -560,11 +530,6 @@ contains
    !> Entries of `hold` that are active stay active whatever their gap; they are
    !> counted as changed when their gap says open, so that the caller does not stop
    !> on them (the driver holds nodes opened by the pairing update alone).
-   !> While the active set changes, the next solve keeps the pairing frozen (no
-   !> geometric stiffness): far from the solution, as in the first iterations of a
-   !> curved contact where a few nodes penetrate deeply, its linearization is poor
-   !> and indefinite; once the active set holds, the geometric part makes the
-   !> iteration on the pairing a Newton iteration.
    subroutine update_active(self, nchanged, hold)
       class(contact_state_t), intent(inout) :: self
       integer, intent(out) :: nchanged
@@ -575,23 +540,7 @@ contains
       nchanged = count(new .neqv. self%active)
       if (present(hold)) new = new .or. (hold .and. self%active .and. self%iseg > 0)
       self%active = new
-      if (nchanged > 0) then
-         self%geo_weight = 0.0_wp
-         self%geo_rhs = 0.0_wp
-      end if
    end subroutine update_active
-
-   !> Switch the geometric stiffness on or off (off: the weights and right-hand
-   !> sides of the current pairing are cleared at once).
-   subroutine set_geometric(self, on)
-      class(contact_state_t), intent(inout) :: self
-      logical, intent(in) :: on
-      self%geometric_off = .not. on
-      if (.not. on) then
-         self%geo_weight = 0.0_wp
-         self%geo_rhs = 0.0_wp
-      end if
-   end subroutine set_geometric
 
    !> Add k A^T n n^T A of the active springs to `a`; `ok` false when a spring
    !> couples nodes the pattern does not hold (the caller rebuilds the pattern).
@@ -605,17 +554,13 @@ contains
          if (.not. self%active(i)) cycle
          ! closed springs carry their stiffness even at g = 0 exactly (initial touching)
          call add_element_matrix(a, nodes_of(self, i), &
-                                 contact_stiffness(self%xi(i), self%normal(:, i), self%k(i), -1.0_wp) + &
-                                 self%geo_weight(i)*contact_geometric_stiffness(self%xi(i), self%normal(:, i), &
-                                                                                self%seglen(i), self%k(i), &
-                                                                                self%gap(i)), ok)
+                                 contact_stiffness(self%xi(i), self%normal(:, i), self%k(i), -1.0_wp), ok)
          if (.not. ok) return
       end do
    end subroutine add_stiffness
 
-   !> Right-hand side of the active springs: (lambda - k g0) A^T n, plus K_geo u_p (u_p the
-   !> displacements of the pairing), so that a solve is a Newton step:
-   !> (K + K_c + K_geo) u = f_ext - f_c(u_p) + (K_c + K_geo) u_p.
+   !> Right-hand side of the active springs, (lambda - k g0) A^T n: with the pairing
+   !> frozen, (K + K_c) u = f_ext + sum (lambda - k g0) A^T n is the equilibrium.
    subroutine add_rhs(self, f)
       class(contact_state_t), intent(in) :: self
       real(wp), intent(inout) :: f(:)
@@ -623,7 +568,7 @@ contains
       do i = 1, self%n
          if (.not. self%active(i)) cycle
          call scatter(f, nodes_of(self, i), (self%lambda(i) - self%k(i)*self%gap0(i))* &
-                      matmul(self%normal(:, i), relative_map(self%xi(i))) + self%geo_rhs(:, i))
+                      matmul(self%normal(:, i), relative_map(self%xi(i))))
       end do
    end subroutine add_rhs
 
@@ -656,6 +601,39 @@ contains
                       matmul(self%normal(:, i), relative_map(self%xi(i))))
       end do
    end subroutine linear_forces
+
+   !> jv = jv + K_c v with the contact tangent of the active entries at the current
+   !> pairing: k A^T n n^T A (the matrix the factor holds) and, when `sliding`, the
+   !> part the motion of the projection adds for finite sliding (sliding_tangent;
+   !> zero for the fixed pairings), which is not symmetric.
+   subroutine tangent_times(self, v, jv, sliding)
+      class(contact_state_t), intent(in) :: self
+      real(wp), intent(in) :: v(:)
+      real(wp), intent(inout) :: jv(:)
+      logical, intent(in) :: sliding
+      real(wp) :: ve(6), an(6), kc(6, 6)
+      integer(ip) :: nodes(3)
+      integer :: i, j
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         nodes = nodes_of(self, i)
+         do j = 1, 3
+            ve(2*j - 1:2*j) = v(2*nodes(j) - 1:2*nodes(j))
+         end do
+         an = matmul(self%normal(:, i), relative_map(self%xi(i)))
+         kc = 0.0_wp
+         if (sliding) kc = sliding_tangent(self%xi(i), self%normal(:, i), self%k(i), self%normal_force(i), &
+                                           self%slide_c(i), self%slide_w(:, i))
+         call scatter(jv, nodes, self%k(i)*an*dot_product(an, ve) + matmul(kc, ve))
+      end do
+   end subroutine tangent_times
+
+   !> Whether the pairing of some active entry follows the sliding (finite sliding
+   !> node to surface): then the tangent has the part of sliding_tangent.
+   pure logical function has_sliding(self)
+      class(contact_state_t), intent(in) :: self
+      has_sliding = any(self%active .and. any(abs(self%slide_w) > 0.0_wp, dim=1))
+   end function has_sliding
 
    !> Normal force N = max(0, lambda - k g) of entry i (0 when inactive).
    pure real(wp) function normal_force(self, i) result(f)
@@ -784,14 +762,6 @@ contains
                                      ((1.0_wp - self%xi(i))*u(2*nodes(2) - 1:2*nodes(2)) + &
                                       self%xi(i)*u(2*nodes(3) - 1:2*nodes(3))))
    end function frozen_gap
-
-   !> Whether the next solve carries the geometric stiffness (a Newton step on the
-   !> pairing); without it the solve minimizes the penalty energy with the pairing
-   !> frozen, which the driver's line search evaluates.
-   pure logical function newton(self)
-      class(contact_state_t), intent(in) :: self
-      newton = any(self%active .and. self%geo_weight > 0.0_wp)
-   end function newton
 
    !> Closed springs as supports between parts, for the floating-part check.
    function springs(self, model, part) result(s)

@@ -8,8 +8,7 @@
 !> g = n.(x_s - x_xi) (> 0 open, < 0 penetration), and the relative displacement
 !> u_s - u_xi = A(xi) [u_s; u_a; u_b] with A = [I, -(1-xi) I, -xi I].
 !> The penalty energy 1/2 k <-g>**2 gives the force f = k g A^T n (g < 0) and,
-!> with n and xi frozen, the stiffness k A^T n n^T A (the paper's Eq. 3.13);
-!> contact_geometric_stiffness is the rest of the exact Hessian of the energy.
+!> with n and xi frozen, the stiffness k A^T n n^T A (the paper's Eq. 3.13).
 !> The tangential part of the relative displacement, tau.(u_s - u_xi) with the
 !> unit tangent tau = t/l, is the slip CSLIP (contact_slip).
 module vemcontact_contact_geometry
@@ -18,7 +17,7 @@ module vemcontact_contact_geometry
    private
 
    public :: project_point_segment, relative_map, contact_force, contact_stiffness
-   public :: contact_geometric_stiffness
+   public :: segment_normal, projection_gradient, sliding_tangent
    public :: contact_energy, contact_pressure, contact_slip, segment_is_degenerate, length2
 
    !> project_point_segment status: a proper segment
@@ -70,12 +69,21 @@ contains
       ! with the unit tangent rather than t.t / l**2: no square of a length, which
       ! would underflow or overflow for coordinates beyond 1e-154 or 1e154
       xi = dot_product(d, t/l)/l
-      normal = [t(2), -t(1)]/l
+      normal = segment_normal(xa, xb)
       ! n.t = 0, so n.(xs - x_xi) = n.(xs - xa) for any xi: no cancellation from xi
       gap = dot_product(normal, d)
       xc = min(max(xi, 0.0_wp), 1.0_wp)
       dist = length2(d - xc*t)
    end subroutine project_point_segment
+
+   !> Outward unit normal (t_y, -t_x)/l of the segment xa -> xb (t = xb - xa, l = |t|);
+   !> the segment must not be degenerate (segment_is_degenerate).
+   pure function segment_normal(xa, xb) result(normal)
+      real(wp), intent(in) :: xa(2), xb(2)
+      real(wp) :: normal(2), t(2)
+      t = xb - xa
+      normal = [t(2), -t(1)]/length2(t)
+   end function segment_normal
 
    !> Euclidean length of a 2-vector without under- or overflow of the squares
    !> (gfortran's norm2 returns 0 for (1e-200, 0)): lengths of meshes at any scale
@@ -128,33 +136,41 @@ contains
       end if
    end function contact_stiffness
 
-   !> The part of the Hessian of 1/2 k <-g>**2 that contact_stiffness leaves out:
-   !> k g d2g/du2, from the rotation of n and the motion of xi, for g < 0 (else
-   !> zero).  With tau = t/l, T = A(xi)^T tau and N0 = [0; -n; n] (so that
-   !> n.(u_b - u_a) = N0.u):
+   !> The derivative w = dxi/du of the closest-point parameter of the slave xs on the
+   !> segment xa -> xb (current coordinates), dof order of relative_map: from
+   !> (x_s - x_xi).t = 0, w = (A^T t + [0; -d; d]) / |t|**2 with t = x_b - x_a and
+   !> d = x_s - x_xi.
+   pure function projection_gradient(xi, xs, xa, xb) result(w)
+      real(wp), intent(in) :: xi, xs(2), xa(2), xb(2)
+      real(wp) :: w(6)
+      real(wp) :: t(2), d(2)
+      t = xb - xa
+      d = xs - ((1.0_wp - xi)*xa + xi*xb)
+      w = (matmul(t, relative_map(xi)) + [0.0_wp, 0.0_wp, -d, d])/dot_product(t, t)
+   end function projection_gradient
+
+   !> What the motion of the projection adds to the tangent of one contact point
+   !> whose force acts along a fixed normal n (the reference normal of small strain):
+   !> the force is f = -N A(xi)^T n with N = lambda - k g and the gap
+   !> g = n.(x_s - x_xi) at the closest point xi of the current segment, so that
    !>
-   !>     d2g/du2 = -(T N0^T + N0 T^T)/l - g N0 N0^T / l**2
+   !>     df = k A^T n n^T A du - (k c A^T n + N B) w^T du
    !>
-   !> (docs/contact-formulation.md).  Symmetric, indefinite, of size k |g| / l:
-   !> negligible against k A^T n n^T A, but not against the elastic stiffness in
-   !> the tangential directions, where the contact spring adds nothing.
-   !> `l` is the current length of the segment.
-   pure function contact_geometric_stiffness(xi, normal, l, k, gap) result(kg)
-      real(wp), intent(in) :: xi, normal(2), l, k, gap
-      real(wp) :: kg(6, 6)
-      real(wp) :: tau(2), tv(6), n0(6)
+   !> with c = n.t (t = x_b - x_a, current; dg/dxi = -c), B = (dA/dxi)^T n =
+   !> [0; n; -n] and w = dxi/du (projection_gradient).  This returns the second
+   !> term, J = -(k c A^T n + N B) w^T: not symmetric, of size (k |c| + N) / l, zero
+   !> where nothing slides and the master keeps its direction; the first term is
+   !> contact_stiffness.
+   pure function sliding_tangent(xi, normal, k, force, c, w) result(jc)
+      real(wp), intent(in) :: xi, normal(2), k, force, c, w(6)
+      real(wp) :: jc(6, 6)
+      real(wp) :: v(6)
       integer :: j
-      if (gap < 0.0_wp .and. l > 0.0_wp) then
-         tau = [-normal(2), normal(1)]
-         tv = matmul(tau, relative_map(xi))
-         n0 = [0.0_wp, 0.0_wp, -normal, normal]
-         do j = 1, 6
-            kg(:, j) = -(k*gap/l)*(tv*n0(j) + n0*tv(j) + (gap/l)*n0*n0(j))
-         end do
-      else
-         kg = 0.0_wp
-      end if
-   end function contact_geometric_stiffness
+      v = -(k*c*matmul(normal, relative_map(xi)) + force*[0.0_wp, 0.0_wp, normal, -normal])
+      do j = 1, 6
+         jc(:, j) = v*w(j)
+      end do
+   end function sliding_tangent
 
    !> Penalty energy 1/2 k <-g>**2 of one contact point.
    pure real(wp) function contact_energy(k, gap) result(e)

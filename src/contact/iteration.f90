@@ -17,15 +17,26 @@ module vemcontact_contact_iteration
    use vemcontact_model, only: model_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_contact_rules, only: matrix_key_t, key_of, same_key, line_search_step, needs_line_search, &
-                                       hold_nodes, newton_rises, is_cycle, conditioning_verdict, &
-                                       conditioning_hint, residual_norm, max_rises, cond_ok, cond_warn, &
+                                       hold_nodes, is_cycle, conditioning_verdict, &
+                                       conditioning_hint, residual_norm, cond_ok, cond_warn, &
+                                       near_key, pairing_drift, &
                                        cond_stop, cond_stop_penalty
+   use vemcontact_linalg_gmres, only: linear_operator_t, gmres, gmres_result_t
+   use vemcontact_linalg_norms, only: safe_norm2
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    implicit none
    private
 
    public :: contact_system_t, iteration_record_t, solve_contact, judge_conditioning
+
+   !> GMRES restart length and iteration limit of a solve (krylov_solve): with the
+   !> factor of the matrix itself one or two iterations do; with the sliding part of
+   !> the tangent or a factor of a nearby pairing, 3-10 were measured
+   !> (docs/contact-robustness.md); a factor too far away stalls early instead.
+   integer, parameter :: gmres_restart = 10, gmres_maxit = 30
+   !> The reduction of the residual a solve aims at (krylov_solve)
+   real(wp), parameter :: gmres_reduction = 1.0e-6_wp
 
    !> One iteration, as logged and written to the results.
    type :: iteration_record_t
@@ -111,25 +122,61 @@ module vemcontact_contact_iteration
       end function kmax_i
    end interface
 
+   !> The tangent of the contact iteration on the free dofs (identity on the fixed
+   !> ones): the elastic stiffness, the contact springs and, for a Newton step on the
+   !> pairing of finite sliding, the sliding part; preconditioned by the system's
+   !> current factor (of the frozen-pairing matrix of this or a nearby pairing).
+   type, extends(linear_operator_t) :: contact_tangent_t
+      class(contact_system_t), pointer :: sys => null()
+      type(contact_state_t), pointer :: contact => null()
+      logical, pointer :: fixed(:) => null()
+      logical :: sliding = .false.
+   contains
+      procedure :: apply => tangent_apply
+      procedure :: precondition => tangent_precondition
+   end type contact_tangent_t
+
 contains
+
+   subroutine tangent_apply(self, x, y)
+      class(contact_tangent_t), intent(inout) :: self
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      real(wp), allocatable :: z(:)
+      z = merge(0.0_wp, x, self%fixed)
+      call self%sys%elastic_times(z, y)
+      call self%contact%tangent_times(z, y, self%sliding)
+      where (self%fixed) y = x
+   end subroutine tangent_apply
+
+   subroutine tangent_precondition(self, x, y, error)
+      class(contact_tangent_t), intent(inout) :: self
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      type(error_t), allocatable, intent(out) :: error
+      y = 0.0_wp
+      call self%sys%solve_system(merge(0.0_wp, x, self%fixed), y, error)
+      where (self%fixed) y = x
+   end subroutine tangent_precondition
 
    !> Solve for the displacements u of a load state with contact: u holds the
    !> previous state on entry (the pairing starts from it) and the new one on exit.
    subroutine solve_contact(sys, model, fixed, prescribed, fext, u, contact, error, log)
-      class(contact_system_t), intent(inout) :: sys
+      class(contact_system_t), intent(inout), target :: sys
       type(model_t), intent(in) :: model
-      logical, intent(in) :: fixed(:)
+      logical, intent(in), target :: fixed(:)
       real(wp), intent(in) :: prescribed(:), fext(:)
       real(wp), intent(inout) :: u(:)
-      type(contact_state_t), intent(inout) :: contact
+      type(contact_state_t), intent(inout), target :: contact
       type(error_t), allocatable, intent(out) :: error
-      type(logger_t), intent(in), optional :: log
+      type(logger_t), intent(inout), optional :: log
       logical, allocatable :: history(:, :), hold(:), held(:)
       integer(ip), allocatable :: iseg_start(:)
       real(wp), allocatable :: f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:)
-      real(wp) :: t0, rel, kmax, t_iter, t_fact, t_srch, step, rc_min, rel_prev, overclosure, change, rc
-      logical :: warned, newton_solve, same_matrix, rebuilt
-      integer :: it, nchanged, maxit, nrise, j
+      real(wp) :: t0, rel, kmax, t_iter, t_fact, t_srch, step, rc_min, overclosure, change, rc, t0s
+      logical :: warned, same_matrix, same_pattern, solved, rebuilt, converged, settled
+      type(contact_tangent_t) :: op
+      integer :: it, nchanged, maxit, j
       character(len=160) :: buf
       type(iteration_record_t) :: rec
 
@@ -147,9 +194,10 @@ contains
       sys%t_factorize = 0
       sys%t_solve = 0
       rc_min = 1.0_wp
-      rel_prev = huge(1.0_wp)
-      nrise = 0
-      call contact%set_geometric(.true.)
+      settled = .false.
+      op%sys => sys
+      op%contact => contact
+      op%fixed => fixed
       call contact%start_state()
       ! start from the state left by the previous step (or the undeformed one)
       t0 = wall_time()
@@ -168,65 +216,54 @@ contains
          call sys%contact_matrix(model, contact, u, fixed, prescribed, fext, f, rebuilt, error)
          if (allocated(error)) return
          if (rebuilt .and. present(log)) call log%say('        (contact pairs moved: matrix pattern rebuilt)')
-         ! the matrix of the current factor: solve again without factorizing
-         newton_solve = contact%newton()
-         same_matrix = sys%factored .and. .not. rebuilt
-         if (same_matrix) same_matrix = .not. any(fixed .neqv. sys%factored_fixed)
-         if (same_matrix) same_matrix = same_key(sys%factored_key, contact)
-         t_fact = 0.0_wp
-         if (.not. same_matrix) then
-            t0 = wall_time()
-            sys%factored = .false.
-            call sys%numeric_factorize(error)
-            if (allocated(error) .and. newton_solve) then
-               ! the indefinite geometric part tipped the matrix: go on without it
-               deallocate (error)
-               call geometric_off('the matrix with it is not positive definite')
-               cycle
-            end if
-            if (allocated(error)) then
-               ! a penalty stiff enough to swamp the elastic stiffness loses positive
-               ! definiteness to round-off: say so in the model's terms
-               if (any(contact%active)) error%message = 'error: with the closed contact springs the '// &
-                  'stiffness matrix is not positive definite in floating point ('//error%message//')'// &
-                  new_line('a')//conditioning_hint(maxval(contact%k, mask=contact%active)/kmax)
-               return
-            end if
-            t_fact = wall_time() - t0
-            sys%t_factorize = sys%t_factorize + t_fact
-            sys%factorizations = sys%factorizations + 1
-            sys%factored = .true.
-            sys%factored_fixed = fixed
-            sys%factored_key = key_of(contact)
-            sys%refactorized = .true.
-            rc = sys%rcond()
-            call judge_conditioning(rc, merge(maxval(contact%k, mask=contact%active, dim=1)/kmax, 0.0_wp, &
-                                              any(contact%active)), any(contact%active), warned, error, log)
-            if (allocated(error)) return
-            if (rc > 0.0_wp) rc_min = min(rc_min, rc)
-         end if
          ! the start of the step, with this state's prescribed values
          u0 = merge(prescribed, u, fixed)
-         call timed_solve(f, u)
-         if (allocated(error)) return
+         ! Newton on the pairing once the active set holds: the tangent carries the
+         ! part of finite sliding (sliding_tangent), which the factor lacks: GMRES with
+         ! the factor as preconditioner solves with it
+         op%sliding = settled .and. contact%has_sliding()
+         ! the matrix of the current factor: solve again without factorizing; a
+         ! matrix that differs from it only by a small move of the pairing: the old
+         ! factor as the preconditioner
+         same_pattern = sys%factored .and. .not. rebuilt
+         if (same_pattern) same_pattern = .not. any(fixed .neqv. sys%factored_fixed)
+         same_matrix = same_pattern
+         if (same_matrix) same_matrix = same_key(sys%factored_key, contact)
+         solved = .false.
+         if (same_pattern .and. .not. same_matrix) then
+            if (near_key(sys%factored_key, contact, pairing_drift)) then
+               call krylov_solve(u, solved)
+               if (allocated(error)) return
+            end if
+         end if
+         t_fact = 0.0_wp
+         if (.not. (same_matrix .or. solved)) then
+            t0 = wall_time()
+            call factorize()
+            if (allocated(error)) return
+            t_fact = wall_time() - t0
+            sys%t_factorize = sys%t_factorize + t_fact
+         end if
+         if (.not. solved .and. op%sliding) then
+            call krylov_solve(u, solved)
+            if (allocated(error)) return
+         end if
+         if (.not. solved) then
+            ! the frozen-pairing step with the factor of its own matrix (also where the
+            ! sliding part was too strong for it)
+            op%sliding = .false.
+            call direct_solve(u)
+            if (allocated(error)) return
+         end if
          if (.not. all(abs(u) <= huge(1.0_wp))) then
             call fatal_error(error, 'error: the solution has NaN or infinite values: the model is '// &
                              'numerically singular', err_solver)
             return
          end if
-         if (.not. newton_solve) then
-            ! one step of iterative refinement with the residual from the gaps: the
-            ! backward error of the factorization is eps times the stiffest spring,
-            ! which at K h/E = 1e7 leaves 2e-8 in the contact forces; the refined
-            ! solve brings it to the round-off of the elastic forces
-            call refine(u)
-            if (allocated(error)) return
-            ! a solve without the geometric term minimizes the frozen-pairing energy
-            ! with the current springs: cut it when it overshoots into new contact
-            step = energy_step(u0, u)
-         else
-            step = 1.0_wp
-         end if
+         ! a frozen-pairing solve minimizes its penalty energy with the current
+         ! springs: cut it when it overshoots into new contact
+         step = 1.0_wp
+         if (.not. op%sliding) step = energy_step(u0, u)
          if (step < 1.0_wp) u = u0 + step*(u - u0)
 
          ! new pairing and active set (closed nodes opened by the re-pairing alone
@@ -238,6 +275,7 @@ contains
          hold = hold_nodes(contact%active, gfrozen, contact%gap, held)
          call contact%update_active(nchanged, hold)
          held = hold .and. contact%active
+         settled = nchanged == 0
          t_srch = wall_time() - t0
          sys%t_search = sys%t_search + t_srch
          call sys%elastic_times(u, ku)
@@ -248,43 +286,36 @@ contains
          rel = residual_norm(r, u, merge(0.0_wp, fext, fixed), fc, kmax, &
                              merge(maxval(contact%k, mask=contact%active, dim=1), 0.0_wp, any(contact%active)))
          rec = iteration_record_t(it, count(contact%active), nchanged, rel, contact%max_penetration(), &
-                                  contact%max_pressure(), step, .not. same_matrix, wall_time() - t_iter)
+                                  contact%max_pressure(), step, t_fact > 0.0_wp, wall_time() - t_iter)
          sys%records = [sys%records, rec]
          write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4,2x,f10.6,2x,f6.4)') it, &
             rec%active, nchanged, rel, rec%penetration, rec%pressure, rec%time, t_fact, t_srch, step
          if (present(log)) call log%say(trim(buf))
          history(:, it) = contact%active
          gaps(:, it) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
-         if (nchanged == 0 .and. rel <= model%controls%residual_tol) then
-            if (contact%has_hard()) then
-               ! HARD: the augmented Lagrangian's Uzawa update; converged once the solve
-               ! left no overclosure beyond the tolerance and the update would change no
-               ! force by more than the residual tolerance (the pressures' accuracy).
-               ! The gaps' round-off is excluded: a few ulps of the coordinates (the
-               ! reference gaps) and of the displacements; on the dam (coordinates 25 m,
-               ! K = 4e13 Pa/m) it is worth 1e-6 of the forces, which the updates only stir.
-               ! From the first update on, the geometric part of finite sliding is off
-               ! for the step: its right-hand side belongs to the pairing of the solve
-               ! it was made for, and kept with a new one it held the residual at 2e-7
-               ! (voronoi_500 of example 3, NODE TO SURFACE with HARD); without it the
-               ! pairing converges as the frozen-pairing fixed point (21 iterations there).
-               call contact%augment(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
-                                    16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), overclosure, change)
-               if (overclosure > model%controls%overclosure_tol .or. &
-                   change > model%controls%residual_tol) then
-                  ! where the pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE) the
-                  ! matrix then holds and only the right-hand side changes
-                  call contact%set_geometric(.false.)
-                  cycle
-               end if
-            end if
+         if (nchanged == 0 .and. contact%has_hard()) then
+            ! HARD: the augmented Lagrangian's Uzawa update, at every iteration that kept
+            ! the active set (the pairing of finite sliding settles meanwhile, at the
+            ! same time); converged once the solve left no overclosure beyond the
+            ! tolerance and the update would change no force by more than the residual
+            ! tolerance (the pressures' accuracy).  The gaps' round-off is excluded: a
+            ! few ulps of the coordinates (the reference gaps) and of the displacements;
+            ! on the dam (coordinates 25 m, K = 4e13 Pa/m) it is worth 1e-6 of the
+            ! forces, which the updates only stir.  Where the pairing is fixed (SMALL
+            ! SLIDING, SURFACE TO SURFACE) the matrix then holds and only the
+            ! right-hand side changes.
+            call contact%augment(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
+                                 16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), overclosure, change)
+            converged = rel <= model%controls%residual_tol .and. &
+                        overclosure <= model%controls%overclosure_tol .and. change <= model%controls%residual_tol
+         else
+            converged = nchanged == 0 .and. rel <= model%controls%residual_tol
+         end if
+         if (converged) then
             call contact%set_balanced(model, ku - fext, fixed)
             call report_slid_off()
             return
          end if
-         nrise = newton_rises(nrise, newton_solve, rel, rel_prev)
-         if (nrise >= max_rises) call geometric_off('three Newton steps in a row raised the residual')
-         rel_prev = rel
          if (nchanged > 0) then
             j = is_cycle(history, gaps, contact%active, gaps(:, it), it, rc_min, maxval(abs(u)))
             if (j >= 0) then
@@ -303,30 +334,98 @@ contains
                        'nodes at every iteration and can alternate where they face master vertices; '// &
                        'TYPE=SURFACE TO SURFACE (VEM bodies) or SMALL SLIDING keep the pairing fixed', err_solver)
    contains
-      subroutine timed_solve(rhs, x)
-         real(wp), intent(in) :: rhs(:)
-         real(wp), intent(inout) :: x(:)
-         real(wp) :: ts
-         ts = wall_time()
-         call sys%solve_system(rhs, x, error)
-         sys%t_solve = sys%t_solve + (wall_time() - ts)
-      end subroutine timed_solve
-
-      !> u <- u + A^-1 (b - A u) with b - A u = f_ext - K u - f_c(u), the contact
-      !> forces of the frozen pairing from the gaps (contact_state_t%linear_forces).
-      subroutine refine(x)
+      !> x = u0 + dx with the factor of the frozen-pairing matrix itself: a solve and
+      !> one step of iterative refinement, dx = A^-1 r(u0), then x <- x + A^-1 r(x), with
+      !> the residual r = f_ext - K x - f_c(x) from the gaps.  The backward error of
+      !> the factorization is eps times the stiffest spring, which at K h/E = 1e7 left
+      !> 2e-8 in the contact forces; the refined solution carries the round-off of the
+      !> elastic forces (the contact patch test of SURFACE TO SURFACE at K h/E = 1e8:
+      !> 1e-13 with the refinement, 3e-7 without).
+      subroutine direct_solve(x)
          real(wp), intent(inout) :: x(:)
          real(wp), allocatable :: dx(:)
+         real(wp) :: rel_x
+         integer :: pass
+         x = u0
+         allocate (dx(size(x)))
+         do pass = 1, 2
+            rel_x = frozen_residual(x)
+            dx = 0.0_wp
+            t0s = wall_time()
+            call sys%solve_system(r, dx, error)
+            sys%t_solve = sys%t_solve + (wall_time() - t0s)
+            if (allocated(error)) return
+            x = x + dx
+         end do
+      end subroutine direct_solve
+
+      !> The relative residual of the frozen-pairing equilibrium at x (residual_norm),
+      !> leaving r = f_ext - K x - f_c(x) (zero on the fixed dofs) and f_c in fc.
+      real(wp) function frozen_residual(x) result(rel_x)
+         real(wp), intent(in) :: x(:)
          call sys%elastic_times(x, ku)
          fc = 0.0_wp
          call contact%linear_forces(x, fc)
          r = fext - ku - fc
          where (fixed) r = 0.0_wp
-         allocate (dx(size(x)), source=0.0_wp)
-         call timed_solve(r, dx)
+         rel_x = residual_norm(r, x, merge(0.0_wp, fext, fixed), fc, kmax, &
+                               merge(maxval(contact%k, mask=contact%active, dim=1), 0.0_wp, any(contact%active)))
+      end function frozen_residual
+
+      !> x = u0 + dx with J dx = r(u0), the tangent J of `op` (the frozen-pairing
+      !> matrix, plus the sliding part for a Newton step), by GMRES preconditioned
+      !> with the current factor (of this or a nearby pairing), to a millionth of the
+      !> initial residual or its round-off floor.  ok: GMRES converged; otherwise x is
+      !> its last iterate.
+      subroutine krylov_solve(x, ok)
+         real(wp), intent(inout) :: x(:)
+         logical, intent(out) :: ok
+         real(wp), allocatable :: dx(:)
+         type(gmres_result_t) :: res
+         real(wp) :: rel0, tol_abs, floor_abs
+         ok = .false.
+         rel0 = frozen_residual(u0)
+         ! a millionth of the initial residual: an inexact Newton step that keeps the
+         ! quadratic rate; a multiplier update of HARD late in the iteration starts
+         ! from a residual near the round-off, and must still be applied in full.
+         ! The floor, 1e3 eps of the residual's scale, is about the round-off of its
+         ! evaluation (floors of 1e-15 to 1e-17 relative were logged): below it GMRES
+         ! goes on only while it still halves the residual
+         tol_abs = gmres_reduction*safe_norm2(r)
+         floor_abs = 0.0_wp
+         if (rel0 > 0.0_wp) floor_abs = 1.0e3_wp*epsilon(1.0_wp)*safe_norm2(r)/rel0
+         allocate (dx(size(u0)), source=0.0_wp)
+         t0s = wall_time()
+         call gmres(op, r, dx, tol_abs, floor_abs, gmres_restart, gmres_maxit, 0.5_wp, res, error)
+         sys%t_solve = sys%t_solve + (wall_time() - t0s)
          if (allocated(error)) return
-         x = x + dx
-      end subroutine refine
+         x = u0 + dx
+         ok = res%converged
+      end subroutine krylov_solve
+
+      !> Numeric factorization of the current matrix, with its conditioning judged.
+      subroutine factorize()
+         sys%factored = .false.
+         call sys%numeric_factorize(error)
+         if (allocated(error)) then
+            ! a penalty stiff enough to swamp the elastic stiffness loses positive
+            ! definiteness to round-off: say so in the model's terms
+            if (any(contact%active)) error%message = 'error: with the closed contact springs the '// &
+               'stiffness matrix is not positive definite in floating point ('//error%message//')'// &
+               new_line('a')//conditioning_hint(maxval(contact%k, mask=contact%active)/kmax)
+            return
+         end if
+         sys%factorizations = sys%factorizations + 1
+         sys%factored = .true.
+         sys%factored_fixed = fixed
+         sys%factored_key = key_of(contact)
+         sys%refactorized = .true.
+         rc = sys%rcond()
+         call judge_conditioning(rc, merge(maxval(contact%k, mask=contact%active, dim=1)/kmax, 0.0_wp, &
+                                           any(contact%active)), any(contact%active), warned, error, log)
+         if (allocated(error)) return
+         if (rc > 0.0_wp) rc_min = min(rc_min, rc)
+      end subroutine factorize
 
       !> The line search along the solve from ua to ub (line_search_step), with the
       !> gaps frozen and shifted by lambda/k for HARD entries.
@@ -380,11 +479,6 @@ contains
                       'small, use SMALL SLIDING or TYPE=SURFACE TO SURFACE (pairing fixed at the start)')
       end subroutine report_slid_off
 
-      subroutine geometric_off(why)
-         character(len=*), intent(in) :: why
-         call contact%set_geometric(.false.)
-         if (present(log)) call log%say('        (geometric contact stiffness off for this step: '//why//')')
-      end subroutine geometric_off
    end subroutine solve_contact
 
    !> Stop when a factor is too ill-conditioned to trust, warn (once: `warned`) when it
@@ -395,7 +489,7 @@ contains
       logical, intent(in) :: contact_closed
       logical, intent(inout) :: warned
       type(error_t), allocatable, intent(out) :: error
-      type(logger_t), intent(in), optional :: log
+      type(logger_t), intent(inout), optional :: log
       character(len=120) :: msg
       integer :: verdict
       verdict = conditioning_verdict(rc, ratio, contact_closed)

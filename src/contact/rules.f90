@@ -3,22 +3,23 @@
 !>
 !> * `line_search_step`: how far to go along a solve that closes new nodes;
 !> * `hold_nodes`: closed nodes that only the re-pairing opened stay closed one solve;
-!> * `newton_rises`: when the Newton steps on the pairing are given up;
 !> * `is_cycle`: when the iterates repeat an earlier one;
 !> * `conditioning_verdict`: when the factor is too ill-conditioned to trust;
 !> * `residual_norm`: the convergence measure;
-!> * `matrix_key_t`, `key_of`, `same_key`: when the factor can be reused.
+!> * `matrix_key_t`, `key_of`, `same_key`: when the factor can be reused;
+!> * `near_key`: when the factor of a nearby pairing can serve as a solver.
 !>
 !> docs/contact-robustness.md tells how each was found and measured.
 module vemcontact_contact_rules
    use vemcontact_kinds, only: wp, ip
    use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_linalg_norms, only: safe_norm2
    implicit none
    private
 
-   public :: line_search_step, needs_line_search, hold_nodes, newton_rises, is_cycle
+   public :: line_search_step, needs_line_search, hold_nodes, is_cycle
    public :: conditioning_verdict, conditioning_hint, residual_norm
-   public :: matrix_key_t, key_of, same_key
+   public :: matrix_key_t, key_of, same_key, near_key
 
    !> CHOLMOD's reciprocal condition estimate below which results lose accuracy
    !> (relative errors of about eps/rcond: 1e-7 and worse) and a warning is logged,
@@ -44,23 +45,21 @@ module vemcontact_contact_rules
    !> paper decks (growth by one node per iteration), the longest decreasing step
    !> (c = 1e-4, about 2 t*) 5 on the refined ones (docs/contact-robustness.md).
    real(wp), parameter, public :: armijo = 0.25_wp
-   !> Newton steps on the pairing that raise the residual this many times in a row are
-   !> far from the quadratic regime and are given up for the frozen-pairing fixed
-   !> point, which converges (slowly).  On a fine structured non-matching interface at
-   !> K h/E ~ 10 (bench/accuracy, 1.3e5 unknowns) the first two Newton steps after the
-   !> solve at the undeformed pairing raise it 25-fold with FEM quads, which then
-   !> converge in 10 iterations (36 without the geometric part).
-   integer, parameter, public :: max_rises = 3
+   !> The largest move of an active entry's projection (xi, in segment lengths) for
+   !> which the factor of the old pairing still serves the new one as the
+   !> preconditioner of GMRES (near_key): the contact matrix then differs by at most
+   !> this fraction of the springs; GMRES stalls early where that is too much.
+   real(wp), parameter, public :: pairing_drift = 0.1_wp
 
    !> conditioning_verdict: trust the factor, warn (once), stop
    integer, parameter, public :: cond_ok = 0, cond_warn = 1, cond_stop = 2, cond_stop_penalty = 3
 
    !> What the contact part of the matrix depends on: the active set and, for the
-   !> active entries, the pairing and the weights of the geometric part.
+   !> active entries, the pairing and the springs.
    type :: matrix_key_t
       logical, allocatable :: active(:)
       integer(ip), allocatable :: iseg(:)
-      real(wp), allocatable :: xi(:), normal(:, :), geo_weight(:), k(:)
+      real(wp), allocatable :: xi(:), normal(:, :), k(:)
    end type matrix_key_t
 
 contains
@@ -153,19 +152,6 @@ contains
       hold = active .and. frozen_gap <= 0.0_wp .and. gap > 0.0_wp .and. .not. held
    end function hold_nodes
 
-   !> Count of Newton solves in a row that raised the residual (rel > rel_prev), reset
-   !> by any other solve; the caller gives the Newton steps up at max_rises.
-   pure integer function newton_rises(nrise, newton_solve, rel, rel_prev) result(n)
-      integer, intent(in) :: nrise
-      logical, intent(in) :: newton_solve
-      real(wp), intent(in) :: rel, rel_prev
-      if (newton_solve .and. rel > rel_prev) then
-         n = nrise + 1
-      else
-         n = 0
-      end if
-   end function newton_rises
-
    !> The earlier iteration (0 .. it-1) whose active set and gaps the current ones
    !> repeat, 0 if none (iteration 0 is the start).  Gaps repeat within the round-off
    !> of the solves: about eps/rcond of the overclosures plus the rounding of the
@@ -230,9 +216,9 @@ contains
    pure real(wp) function residual_norm(r, u, f, fc, kmax, kc) result(rel)
       real(wp), intent(in) :: r(:), u(:), f(:), fc(:), kmax, kc
       real(wp) :: scale
-      scale = (kmax + kc)*norm2(u) + norm2(f) + norm2(fc)
+      scale = (kmax + kc)*safe_norm2(u) + safe_norm2(f) + safe_norm2(fc)
       rel = 0.0_wp
-      if (scale > 0.0_wp) rel = norm2(r)/scale
+      if (scale > 0.0_wp) rel = safe_norm2(r)/scale
    end function residual_norm
 
    !> The matrix key of the current contact state.
@@ -243,13 +229,11 @@ contains
       key%iseg = contact%iseg
       key%xi = contact%xi
       key%normal = contact%normal
-      key%geo_weight = contact%geo_weight
       key%k = contact%k
    end function key_of
 
    !> Whether the contact part of the matrix is that of `key`: the same active set
-   !> and, for the active entries, the same pairing and springs and no geometric part (which also
-   !> depends on the gaps, so that a Newton matrix is never reused).
+   !> and, for the active entries, the same pairing and springs.
    pure logical function same_key(key, contact) result(same)
       type(matrix_key_t), intent(in) :: key
       type(contact_state_t), intent(in) :: contact
@@ -264,11 +248,32 @@ contains
          if (.not. contact%active(i)) cycle
          ! bitwise the same numbers: the matrix assembled from them is the same
          same = key%iseg(i) == contact%iseg(i) .and. identical(key%xi(i), contact%xi(i)) .and. &
-                identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i))) .and. &
-                .not. (abs(key%geo_weight(i)) > 0.0_wp .or. abs(contact%geo_weight(i)) > 0.0_wp)
+                identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i)))
          if (.not. same) return
       end do
    end function same_key
+
+   !> Whether the contact part of the matrix is close to that of `key`: the same
+   !> active set, springs, segments and normals, and projections xi that moved by at
+   !> most `drift` (a fraction of the segment) for the active entries.
+   pure logical function near_key(key, contact, drift) result(near)
+      type(matrix_key_t), intent(in) :: key
+      type(contact_state_t), intent(in) :: contact
+      real(wp), intent(in) :: drift
+      integer :: i
+      near = allocated(key%active)
+      if (.not. near) return
+      near = size(key%active) == contact%n
+      if (.not. near) return
+      near = all(key%active .eqv. contact%active)
+      if (.not. near) return
+      do i = 1, contact%n
+         if (.not. contact%active(i)) cycle
+         near = key%iseg(i) == contact%iseg(i) .and. abs(key%xi(i) - contact%xi(i)) <= drift .and. &
+                identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i)))
+         if (.not. near) return
+      end do
+   end function near_key
 
    !> a and b are the same number (neither is less or greater).
    elemental logical function identical(a, b)

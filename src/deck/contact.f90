@@ -8,7 +8,8 @@
 module vemcontact_deck_contact
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, surface_t, interaction_t, contact_pair_t, source_loc_t, &
-                               surface_element, surface_node, pair_node_to_surface, pair_surface_to_surface
+                               surface_element, surface_node, pair_node_to_surface, pair_surface_to_surface, &
+                               element_order
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, pair_ref_t, here, err_here, err_at, &
                                     warn_here, field, get_real, push_item, loc_str
    use vemcontact_deck_loads, only: field_nodes, field_elems
@@ -125,7 +126,7 @@ contains
             ok = .true.
             do k = 1, int(elems%n)
                e = elems%a(k)
-               nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
+               nn = (model%elem_ptr(e + 1) - model%elem_ptr(e))/element_order(model%elem_type(e))
                if (side > nn) then
                   call err_here(p, 'element '//int_str(model%elem_id(e))//' has '//int_str(nn)// &
                                 ' sides, so there is no side '//lab, side_help)

@@ -4,7 +4,8 @@
 !> GRAV densities, contact pairs, and the steps.
 module vemcontact_deck_finish
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_model, only: model_t, source_loc_t, string_t, etype_polygon, form_vem, form_fem
+   use vemcontact_model, only: model_t, source_loc_t, string_t, etype_polygon, etype_polygon2, form_vem, form_fem, &
+                               element_order
    use vemcontact_deck_state, only: deck_parser_t, err_at, loc_str
    use vemcontact_deck_loads, only: end_step, acc_to_step
    use vemcontact_deck_contact, only: finish_contact
@@ -213,13 +214,14 @@ contains
                model%elem_stab(e) = sec%stabilization
                if (sec%formulation /= 0) then
                   model%elem_form(e) = sec%formulation
-               else if (model%elem_type(e) == etype_polygon) then
+               else if (model%elem_type(e) == etype_polygon .or. model%elem_type(e) == etype_polygon2) then
                   model%elem_form(e) = form_vem
                else
                   model%elem_form(e) = form_fem
                end if
                nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
-               if (model%elem_form(e) == form_fem .and. nn > 4) then
+               ! FEM: 3 or 4 corners, with or without side nodes
+               if (model%elem_form(e) == form_fem .and. nn/element_order(model%elem_type(e)) > 4) then
                   nfem = nfem + 1
                   if (nfem == 1) ebad = e
                end if
@@ -243,7 +245,8 @@ contains
             if (nfem > 0) then
                call err_at(p, sec%loc, 'FORMULATION=FEM on element '//int_str(model%elem_id(ebad))//' with '// &
                            int_str(model%elem_ptr(ebad + 1) - model%elem_ptr(ebad))//' nodes'//more(nfem - 1), &
-                           'FEM needs triangles or quadrilaterals; use FORMULATION=VEM for polygons')
+                           'FEM needs triangles or quadrilaterals (3 or 4 corners, with or without side '// &
+                           'nodes); use FORMULATION=VEM for polygons')
             end if
          end associate
       end do

@@ -6,7 +6,7 @@
 module vemcontact_deck_loads
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure, &
-                               dload_hydrostatic, procedure_static, procedure_geostatic
+                               dload_hydrostatic, procedure_static, procedure_geostatic, element_order
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, here, &
                                     err_here, err_at, field, get_int, get_real, push_item, push_dof, &
                                     push_dload, node_index, elem_index, get_set, set_suggestion, &
@@ -378,11 +378,12 @@ contains
          sides_exist = .true.
          do j = 1, elems%n
             e = elems%a(j)
-            nn = model%elem_ptr(e + 1) - model%elem_ptr(e)
+            nn = (model%elem_ptr(e + 1) - model%elem_ptr(e))/element_order(model%elem_type(e))
             if (k > nn) then
                call err_here(p, 'element '//int_str(model%elem_id(e))//' has '//int_str(nn)// &
                              ' sides, so there is no side '//lab, &
-                             'side k runs from node k to node k+1 of the element')
+                             'side k runs from node k to node k+1 of the element (corner k to corner k+1 '// &
+                             'of a second-order element)')
                sides_exist = .false.
                return
             end if

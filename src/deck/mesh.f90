@@ -3,8 +3,9 @@
 !> once at the end (see vemcontact_deck_finish); sets are resolved when read, so
 !> the nodes and elements they name must be defined before them, as in CalculiX.
 module vemcontact_deck_mesh
-   use vemcontact_kinds, only: wp, ip
+   use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_model, only: model_t, source_loc_t, etype_polygon, etype_quad4, etype_tri3, &
+                               etype_polygon2, etype_quad8, etype_tri6, &
                                plane_strain, plane_stress
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, here, err_here, field, get_id, &
                                     get_int, get_real, push_item, node_index, elem_index, get_set, &
@@ -99,7 +100,7 @@ contains
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
       character(len=:), allocatable :: tname, sname
-      logical :: found, ok, more
+      logical :: found, ok, more, continued
       integer :: kset, etype, plane, nn, k, nnod, stat
       integer(ip) :: id, nid
       call get_param(kw, 'TYPE', tname, found)
@@ -116,9 +117,22 @@ contains
          etype = etype_tri3; plane = plane_strain; nn = 3
       case ('CPS3')
          etype = etype_tri3; plane = plane_stress; nn = 3
+      case ('VPE2')
+         etype = etype_polygon2; plane = plane_strain; nn = 0
+      case ('VPS2')
+         etype = etype_polygon2; plane = plane_stress; nn = 0
+      case ('CPE8')
+         etype = etype_quad8; plane = plane_strain; nn = 8
+      case ('CPS8')
+         etype = etype_quad8; plane = plane_stress; nn = 8
+      case ('CPE6')
+         etype = etype_tri6; plane = plane_strain; nn = 6
+      case ('CPS6')
+         etype = etype_tri6; plane = plane_stress; nn = 6
       case default
          call err_here(p, 'unsupported element type '//tname, &
-                       'supported types are VPE, VPS (polygons), CPE4, CPS4, CPE3, CPS3')
+                       'supported types are VPE, VPS (polygons), VPE2, VPS2 (second-order polygons), '// &
+                       'CPE4, CPS4, CPE3, CPS3, CPE8, CPS8, CPE6, CPS6')
          p%element_errors = .true.
          call skip_data(p)
          return
@@ -130,11 +144,16 @@ contains
          call advance(p)
          if (p%src%kind /= line_data) exit
          call split_fields(p%src%text(1:p%src%length), p%f)
+         ! a polygon's continued lines are split once at the end (splitting the
+         ! growing line after every continuation is quadratic in its length)
+         continued = .false.
          do while (p%src%text(p%src%length:p%src%length) == ',' .and. (nn == 0 .or. p%f%n < nn + 1))
             call p%src%continue_line(more)
             if (.not. more) exit
-            call split_fields(p%src%text(1:p%src%length), p%f)
+            continued = .true.
+            if (nn > 0) call split_fields(p%src%text(1:p%src%length), p%f)
          end do
+         if (continued .and. nn == 0) call split_fields(p%src%text(1:p%src%length), p%f)
          call get_id(p, 1, 'element id', id, ok)
          if (.not. ok) then
             p%element_errors = .true.
@@ -149,6 +168,12 @@ contains
          else if (nn == 0 .and. nnod < 3) then
             call err_here(p, 'element '//int_str(id)//' of type '//tname// &
                           ' needs at least 3 nodes, found '//int_str(nnod))
+            p%element_errors = .true.
+            cycle
+         else if (etype == etype_polygon2 .and. (nnod < 6 .or. mod(nnod, 2) /= 0)) then
+            call err_here(p, 'element '//int_str(id)//' of type '//tname// &
+                          ' needs an even number of nodes, at least 6 (n corners, then n side nodes), found '// &
+                          int_str(nnod))
             p%element_errors = .true.
             cycle
          end if
@@ -236,6 +261,8 @@ contains
       logical :: found, generate, ok
       integer :: kset, k, kind, kref, nmissing
       integer(ip) :: id, first, last, inc, i, idx, first_missing
+      integer(i8) :: nrange, nfound
+      character(len=24) :: cbuf
       type(item_list_t) :: line_items
       if (is_node) then
          what = 'node'
@@ -274,6 +301,31 @@ contains
             if (last < first) then
                call err_here(p, 'GENERATE range is empty: last id '//int_str(last)// &
                              ' is smaller than first id '//int_str(first))
+               cycle
+            end if
+            ! more ids in the range than defined: some are missing; they are counted
+            ! from the defined ids, never by walking a range of up to 2**31 ids
+            nrange = (int(last, i8) - first)/inc + 1
+            if (nrange > int(merge(model%nnode, model%nelem, is_node), i8)) then
+               nfound = 0
+               do k = 1, merge(model%nnode, model%nelem, is_node)
+                  if (is_node) then
+                     id = model%node_id(k)
+                  else
+                     id = model%elem_id(k)
+                  end if
+                  if (id >= first .and. id <= last .and. mod(int(id, i8) - first, int(inc, i8)) == 0) &
+                     nfound = nfound + 1
+               end do
+               ! the first missing id comes after at most nfound defined ones
+               first_missing = first
+               do while (lookup(first_missing) /= 0)
+                  first_missing = first_missing + inc
+               end do
+               write (cbuf, '(i0)') nrange - nfound
+               call err_here(p, trim(cbuf)//' of the ids '//int_str(first)//' to '//int_str(last)// &
+                             ' are not defined '//what//'s (the first is '//int_str(first_missing)//')', &
+                             what//'s must be defined before a set refers to them')
                cycle
             end if
             nmissing = 0

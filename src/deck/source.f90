@@ -4,6 +4,9 @@
 !> copied, trimmed, into `text(1:length)`, a buffer that only grows, so the hot loop
 !> allocates nothing.  Buffers of all files are kept until the source is dropped so
 !> that errors found after parsing can still quote the offending line.
+!> A UTF-8 byte-order mark at the start of a file is read as blanks, and a
+!> carriage return not followed by a line feed (old Mac line ends) ends a line
+!> like a line feed; CR LF line ends work as before (the CR is trimmed).
 module vemcontact_deck_source
    use vemcontact_kinds, only: i8
    implicit none
@@ -126,6 +129,7 @@ contains
             message = 'cannot read '''//npath//''': '//trim(iomsg)
             return
          end if
+         call normalize_line_ends(self%files(ifile)%buf)
          self%files(ifile)%path = npath
          self%nfiles = ifile
       end if
@@ -138,6 +142,25 @@ contains
       self%depth = self%depth + 1
       self%stack(self%depth) = open_file_t(file=ifile, pos=1, line=0)
    end subroutine push_file
+
+   !> Blank out a UTF-8 byte-order mark and turn every CR that is not followed by
+   !> LF into LF, in place (byte positions and line numbers are kept).
+   pure subroutine normalize_line_ends(buf)
+      character(len=*), intent(inout) :: buf
+      character(len=1), parameter :: lf = achar(10), cr = achar(13)
+      integer(i8) :: k, n
+      n = len(buf, kind=i8)
+      if (n >= 3) then
+         if (buf(1:3) == char(239)//char(187)//char(191)) buf(1:3) = '   '
+      end if
+      do k = 1, n
+         if (buf(k:k) /= cr) cycle
+         if (k < n) then
+            if (buf(k + 1:k + 1) == lf) cycle
+         end if
+         buf(k:k) = lf
+      end do
+   end subroutine normalize_line_ends
 
    !> gfortran's iomsg starts with "Cannot open file '...': "; keep only the reason.
    pure function strip_prefix(msg) result(r)

@@ -16,6 +16,8 @@ module vemcontact_driver_linear
    use vemcontact_solver_cholmod, only: cholmod_solver_t
    use vemcontact_solver_ordering, only: node_graph_from_elements, nodal_metis_ordering
    use vemcontact_driver_validate, only: validate_elements
+   use vemcontact_driver_ranges, only: validate_ranges
+   use vemcontact_driver_memory, only: check_memory
    use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes
    use vemcontact_driver_load_state, only: load_state_t
    use vemcontact_driver_assembly, only: assemble_stiffness, assemble_loads
@@ -77,7 +79,12 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(contact_state_t), intent(in), optional :: contact
       real(wp), allocatable :: u0(:)
+      ! the memory bound first: it is linear in the elements, the checks of their shapes are not
+      call check_memory(model, error)
+      if (allocated(error)) return
       call validate_elements(model, error)
+      if (allocated(error)) return
+      call validate_ranges(model, error)
       if (allocated(error)) return
       self%unused = unused_nodes(model)
       call find_parts(model, self%part, self%nparts)
@@ -149,7 +156,7 @@ contains
       real(wp), intent(inout) :: u(:)
       type(error_t), allocatable, intent(out) :: error
       type(contact_state_t), intent(inout), optional :: contact
-      type(logger_t), intent(in), optional :: log
+      type(logger_t), intent(inout), optional :: log
       logical, allocatable :: fixed(:)
       real(wp), allocatable :: f(:)
       real(wp) :: t0

@@ -1,22 +1,29 @@
 !> Linear static analysis over the deck's steps, with output after every step.
-!> Every completed step is on disk (VTU, PVD, HDF5) before the next starts, so a
-!> run that fails part way keeps what it completed.
+!> Every completed step is in the VTU and PVD files before the next starts and
+!> in the HDF5 file, which gets its final name when the run ends: a run that
+!> fails part way keeps the steps it completed (the HDF5 file without the step
+!> that failed and marked `complete = 0`); a killed run leaves no HDF5 file.
 module vemcontact_driver_static
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_error, only: error_t
+   use vemcontact_error, only: error_t, append_message
    use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic, &
+                               element_order, etype_polygon2, &
                                pair_surface_to_surface
    use vemcontact_sparse_mmio, only: write_matrix_market
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_validate, only: element_warnings
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
-   use vemcontact_driver_assembly, only: element_stresses
+   use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
    use vemcontact_post_stress, only: nodal_average
    use vemcontact_post_estimate, only: error_estimate_t, estimate_error
-   use vemcontact_output_vtu, only: write_vtu
+   use vemcontact_post_reactions, only: reaction_forces, constrained_sets
+   use vemcontact_post_labels, only: element_section_sets, element_parts
+   use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
    use vemcontact_output_pvd, only: write_pvd
    use vemcontact_output_hdf5, only: h5_writer_t
    use vemcontact_output_contact, only: write_contact_csv, write_contact_vtu
+   use vemcontact_output_selection, only: field_selection_t, step_selection
+   use vemcontact_output_print, only: has_print_requests, write_print_csv
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_log, only: logger_t
@@ -31,16 +38,44 @@ module vemcontact_driver_static
       character(len=:), allocatable :: job
       integer :: ordering = 0                 !< vemcontact_driver_linear's ordering_*
       logical :: write_matrix = .false.
+      logical :: compress_vtu = .true.        !< zlib-compressed .vtu arrays
    end type run_options_t
 
 contains
 
    !> Run every step.  The model gains the interface nodes of SURFACE TO SURFACE
-   !> contact pairs (contact_state_t%init) before anything is assembled.
+   !> contact pairs (contact_state_t%init) before anything is assembled.  When a
+   !> step fails, the HDF5 file keeps the steps before it and is closed with
+   !> `complete = 0`.
    subroutine run_static(model, opts, log, error)
       type(model_t), intent(inout) :: model
       type(run_options_t), intent(in) :: opts
-      type(logger_t), intent(in) :: log
+      type(logger_t), intent(inout) :: log
+      type(error_t), allocatable, intent(out) :: error
+      type(h5_writer_t) :: h5
+      type(error_t), allocatable :: err2
+      integer :: current, done
+      current = 0
+      done = 0
+      call run_steps(model, opts, log, h5, current, done, error)
+      if (.not. allocated(error) .or. .not. h5%is_open()) return
+      if (current > done) call h5%discard_step(current, err2)
+      if (allocated(err2)) then
+         call h5%discard()
+      else
+         call h5%close(err2)
+      end if
+      if (allocated(err2)) call append_message(error, '(no HDF5 results file: '//err2%message//')')
+   end subroutine run_static
+
+   !> The analysis and its output; `current` is the step being run, `done` the
+   !> last step whose results are in every file.
+   subroutine run_steps(model, opts, log, h5, current, done, error)
+      type(model_t), intent(inout) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(h5_writer_t), intent(inout) :: h5
+      integer, intent(inout) :: current, done
       type(error_t), allocatable, intent(out) :: error
       type(linear_system_t) :: sys
       type(load_state_t) :: st
@@ -49,8 +84,13 @@ contains
       type(error_estimate_t) :: est
       integer, allocatable :: parts(:)
       integer :: ip_
-      type(h5_writer_t) :: h5
-      real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:)
+      real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:), s_at(:, :)
+      real(wp), allocatable :: e_at(:, :), ku(:), f(:), set_rf(:, :)
+      integer, allocatable :: rf_sets(:)
+      type(string_t), allocatable :: set_names(:)
+      type(vtu_extras_t) :: extra
+      type(field_selection_t) :: sel
+      integer :: ie
       type(string_t), allocatable :: vtu_files(:), warnings(:)
       real(wp) :: t0
       integer :: istep, iw
@@ -74,9 +114,10 @@ contains
       write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'nodes ', model%nnode, ', elements ', model%nelem, &
          ', unknowns ', 2*model%nnode, ', steps ', size(model%steps)
       call log%say(trim(buf))
-      write (buf, '(2x,a,i0,a,i0,a,i0)') 'VEM elements ', count(model%elem_form == form_vem), &
+      write (buf, '(2x,a,i0,a,i0,a,i0,a,i0)') 'VEM elements ', count(model%elem_form == form_vem), &
          ', FEM elements ', count(model%elem_form == form_fem), ', of them polygons (VPE/VPS) ', &
-         count(model%elem_type == etype_polygon)
+         count(model%elem_type == etype_polygon), ', second-order polygons (VPE2/VPS2) ', &
+         count(model%elem_type == etype_polygon2)
       call log%say(trim(buf))
 
       if (contact%n > 0) then
@@ -118,15 +159,30 @@ contains
       call h5%open(base//'.h5', error)
       if (allocated(error)) return
       call h5%write_mesh(model, error)
-      if (allocated(error)) return
+      if (allocated(error)) then
+         call h5%discard()
+         return
+      end if
+      extra%elem_set = element_section_sets(model)
+      extra%elem_part = element_parts(model, sys%part)
+      call h5%write_labels(model, extra%elem_set, extra%elem_part, error)
+      if (allocated(error)) then
+         call h5%discard()
+         return
+      end if
 
       call init_load_state(model, st)
       allocate (u(2*model%nnode), s_elem(4, model%nelem), s_node(4, model%nnode))
+      allocate (extra%e_elem(4, model%nelem), extra%e_node(4, model%nnode), extra%rf(2, model%nnode))
+      allocate (ku(2*model%nnode), f(2*model%nnode))
+      if (any([(element_order(model%elem_type(ie)) == 2, ie=1, int(model%nelem))])) &
+         allocate (s_at(4, model%elem_ptr(model%nelem + 1) - 1), e_at(4, model%elem_ptr(model%nelem + 1) - 1))
       ! displacements are reported relative to the end of a geostatic step
       allocate (u_ref(2*model%nnode), source=0.0_wp)
       allocate (vtu_files(0), times(0), parts(0))
       u = 0.0_wp
       do istep = 1, size(model%steps)
+         current = istep
          name = step_name(istep)
          call log%say('step '//name)
          call advance_load_state(model%steps(istep), st)
@@ -154,41 +210,84 @@ contains
          u_out = u - u_ref
 
          t0 = wall_time()
-         call element_stresses(model, u, s_elem)
-         call nodal_average(model, s_elem, s_node)
-         call estimate_error(model, s_elem, est)
-         call log%phase('estimate', wall_time() - t0)
-         call say_estimate(est)
-         t0 = wall_time()
+         ! second-order elements give their own stress and strain at each node
+         ! (linear for the k = 2 VEM), averaged at the nodes instead of the
+         ! element values; strains from the same recovery as the stresses
+         ! (S = D E element by element)
+         if (allocated(s_at)) then
+            call element_stresses(model, u, s_elem, st%dload, s_at)
+            call nodal_average(model, s_elem, s_node, s_at)
+            call element_strains(model, u, extra%e_elem, st%dload, e_at)
+            call nodal_average(model, extra%e_elem, extra%e_node, e_at)
+         else
+            call element_stresses(model, u, s_elem, st%dload)
+            call nodal_average(model, s_elem, s_node)
+            call element_strains(model, u, extra%e_elem, st%dload)
+            call nodal_average(model, extra%e_elem, extra%e_node)
+         end if
+         ! the recovery-based error estimate (first-order elements only: the
+         ! recovery compares a linear field with the constant element stress)
+         if (.not. allocated(s_at)) then
+            call estimate_error(model, s_elem, est)
+            call log%phase('estimate', wall_time() - t0)
+            call say_estimate(est)
+            t0 = wall_time()
+         else if (istep == 1) then
+            call log%say('  no error estimate: the model has second-order elements (the recovery is '// &
+                         'for first-order elements; docs/error-estimate.md)')
+         end if
+         ! reactions: K u - f_ext at the constrained dofs, with the loads in force
+         call sys%elastic_times(u, ku)
+         call assemble_loads(model, st%force, st%dload, f)
+         call reaction_forces(ku, f, st%fixed, extra%rf)
+         rf_sets = constrained_sets(model, st%fixed)
+         allocate (set_rf(2, size(rf_sets)), set_names(size(rf_sets)))
+         do iw = 1, size(rf_sets)
+            set_names(iw)%s = model%nsets(rf_sets(iw))%name
+            set_rf(:, iw) = sum(extra%rf(:, model%nsets(rf_sets(iw))%items), dim=2)
+         end do
+         call log_reactions(extra%rf, f, set_names, set_rf)
+         extra%time = real(istep, wp)
+         ! the fields the deck's output requests select (all without requests)
+         sel = step_selection(model, istep)
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)
          call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
-                        s_elem, s_node, error, est%indicator)
+                        s_elem, s_node, error, opts%compress_vtu, extra, sel, indicator=est%indicator)
          if (allocated(error)) return
          vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
          times = [times, real(istep, wp)]
          parts = [parts, 0]
          call h5%write_step(istep, name, real(istep, wp), reshape(u_out, [2, int(model%nnode)]), &
-                            s_elem, s_node, error, est%indicator, est%estimate, est%energy)
+                            s_elem, s_node, error, sel, indicator=est%indicator, &
+                            estimate=est%estimate, energy=est%energy)
          if (allocated(error)) return
+         call h5%write_results(istep, extra%e_elem, extra%e_node, extra%rf, set_names, set_rf, error, sel)
+         if (allocated(error)) return
+         deallocate (set_rf, set_names)
          if (contact%n > 0) then
-            ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per pair
+            ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per
+            ! pair, when a contact field is selected
             tab = contact%table(model, u_out)
-            write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
-            call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, error)
-            if (allocated(error)) return
-            vtu_files = [vtu_files, string_t(opts%out_dir//'/'//opts%job//trim(buf))]
-            times = [times, real(istep, wp)]
-            parts = [parts, 1]
+            if (sel%contact()) then
+               write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
+               call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, &
+                                      reshape(u_out, [2, int(model%nnode)]), error, opts%compress_vtu, sel)
+               if (allocated(error)) return
+               vtu_files = [vtu_files, string_t(opts%out_dir//'/'//opts%job//trim(buf))]
+               times = [times, real(istep, wp)]
+               parts = [parts, 1]
+            end if
             do ip_ = 1, size(model%pairs)
+               if (.not. sel%contact()) exit
                write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
-               call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error)
+               call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error, sel)
                if (allocated(error)) return
                call h5%write_contact(istep, ip_, pack(tab%node_id, tab%pair == ip_), &
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
-                                     pack(tab%status, tab%pair == ip_), error)
+                                     pack(tab%status, tab%pair == ip_), error, sel)
                if (allocated(error)) return
             end do
             associate (rec => sys%records)
@@ -202,14 +301,30 @@ contains
                contact%max_penetration()
             call log%say(trim(buf))
          end if
+         if (has_print_requests(model, istep)) then
+            ! *NODE PRINT, *EL PRINT, *CONTACT PRINT: CalculiX's JOB.dat as a CSV table
+            write (buf, '(a,i4.4,a)') '_print_', istep, '.csv'
+            if (contact%n > 0) then
+               call write_print_csv(base//trim(buf), model, istep, reshape(u_out, [2, int(model%nnode)]), extra%rf, &
+                                    s_elem, extra%e_elem, error, tab)
+            else
+               call write_print_csv(base//trim(buf), model, istep, reshape(u_out, [2, int(model%nnode)]), extra%rf, &
+                                    s_elem, extra%e_elem, error)
+            end if
+            if (allocated(error)) return
+         end if
          call write_pvd(base//'.pvd', vtu_files, times, error, parts)
          if (allocated(error)) return
+         done = istep
          call log%phase('write', wall_time() - t0)
          write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(u_out(1::2))), &
             ', max |u_y| ', maxval(abs(u_out(2::2))), ', rcond ', sys%solver%rcond()
          call log%say(trim(buf))
+         call log%failed(error)
+         if (allocated(error)) return
       end do
-      call h5%close()
+      call h5%close(error, complete=.true.)
+      if (allocated(error)) return
       call sys%solver%release()
       call log%say('results')
       call log%say('  '//base//'.pvd')
@@ -245,6 +360,22 @@ contains
          s = trim(adjustl(b))
       end function number
 
+      !> Totals of the reaction forces (all nodes, and per constrained node set)
+      !> beside the applied loads they balance.
+      subroutine log_reactions(rf, fext, names, totals)
+         real(wp), intent(in) :: rf(:, :), fext(:), totals(:, :)
+         type(string_t), intent(in) :: names(:)
+         character(len=160) :: line
+         integer :: k
+         write (line, '(2x,a,2es14.6,a,2es14.6)') 'reaction forces RF1, RF2: all nodes', sum(rf, dim=2), &
+            '; applied loads', sum(fext(1::2)), sum(fext(2::2))
+         call log%say(trim(line))
+         do k = 1, size(names)
+            write (line, '(4x,a,2es14.6)') 'node set '//names(k)%s//':', totals(:, k)
+            call log%say(trim(line))
+         end do
+      end subroutine log_reactions
+
       function step_name(i) result(s)
          integer, intent(in) :: i
          character(len=:), allocatable :: s
@@ -256,5 +387,5 @@ contains
             s = trim(b)
          end if
       end function step_name
-   end subroutine run_static
+   end subroutine run_steps
 end module vemcontact_driver_static

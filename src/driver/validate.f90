@@ -7,10 +7,12 @@
 module vemcontact_driver_validate
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, append_message, err_input
-   use vemcontact_model, only: model_t, location_string, string_t, find_set, plane_strain, form_fem
+   use vemcontact_model, only: model_t, location_string, string_t, find_set, plane_strain, form_fem, &
+                               element_order, surface_element
    use vemcontact_element_geometry, only: polygon_signed_area, polygon_diameter, polygon_defect, &
       polygon_max_angle, geom_rtol, defect_none, defect_coincident, defect_fold, defect_crossing
    use vemcontact_element_quad4, only: quad4_min_gauss_jacobian
+   use vemcontact_element_vem2, only: vem2_side_rtol
    implicit none
    private
 
@@ -35,13 +37,20 @@ module vemcontact_driver_validate
    !> margin of 1e20 on both sides and is beyond any unit system a user would pick.
    real(wp), parameter, public :: coord_max = 1.0e130_wp, size_min = 1.0e-130_wp
 
+   !> Most vertices of one element.  The VEM element matrix is dense, (2n)^2
+   !> doubles, and its kernel costs O(n^3): a regular 2000-gon alone takes 5.7 s
+   !> and 0.59 GB (1000: 1.3 s, 0.17 GB; Release), 10 000 vertices aborted an
+   !> allocation and 30 000 exhausted 24 GB; beyond 2000 a polygon is better split.
+   !> Checked before any geometry (whose checks are quadratic in n).
+   integer, parameter, public :: max_element_nodes = 2000
+
 contains
 
    subroutine validate_elements(model, error)
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: error
       real(wp), allocatable :: xy(:, :)
-      integer :: e, n, nerr, i, j
+      integer :: e, n, nerr, i, j, nc
       integer(ip) :: first
       character(len=:), allocatable :: what
       character(len=24) :: id
@@ -65,6 +74,10 @@ contains
          n = model%elem_ptr(e + 1) - first
          if (n < 3) then
             what = 'has fewer than 3 nodes'
+         else if (n > max_element_nodes) then
+            write (id, '(i0)') n
+            what = 'has '//trim(id)//' nodes, more than the limit of 2000 for one element (its dense '// &
+                   'stiffness matrix grows with the square of the node count): split it into smaller polygons'
          else
             what = ''
             associate (conn => model%elem_conn(first:first + n - 1))
@@ -77,14 +90,19 @@ contains
                      end if
                   end do
                end do outer
+               ! the polygon of a second-order element is its corners
+               nc = n/element_order(model%elem_type(e))
                if (len(what) == 0) then
                   xy(:, :n) = model%x(:, conn)
-                  if (polygon_diameter(xy(:, :n)) < size_min .and. polygon_diameter(xy(:, :n)) > 0.0_wp) then
+                  if (polygon_diameter(xy(:, :nc)) < size_min .and. polygon_diameter(xy(:, :nc)) > 0.0_wp) then
                      what = 'is smaller than 1e-130 (its diameter): choose a length unit '// &
                             'that brings it into range'
                   else
-                     what = shape_defect(model, conn, xy(:, :n), model%elem_form(e))
+                     what = shape_defect(model, conn(:nc), xy(:, :nc), model%elem_form(e))
                   end if
+               end if
+               if (len(what) == 0 .and. nc < n .and. model%elem_form(e) /= form_fem) then
+                  what = side_node_defect(model, conn, xy(:, :n))
                end if
             end associate
          end if
@@ -101,7 +119,90 @@ contains
          write (id, '(i0)') nerr - max_messages
          call append_message(error, '... and '//trim(id)//' more element errors', err_input)
       end if
+      if (nerr == 0) call check_contact_order(model, error)
    end subroutine validate_elements
+
+   !> Contact on second-order sides is not implemented: a surface of a contact
+   !> pair on a second-order element (or, for node surfaces, a node of one) is
+   !> refused with the surface's file:line.
+   subroutine check_contact_order(model, error)
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(inout) :: error
+      logical, allocatable :: second_node(:)
+      integer :: k, r, isurf, e
+      character(len=24) :: id
+      if (.not. allocated(model%pairs) .or. .not. allocated(model%surfaces)) return
+      if (size(model%pairs) == 0) return
+      if (all([(element_order(model%elem_type(e)) == 1, e=1, model%nelem)])) return
+      allocate (second_node(model%nnode), source=.false.)
+      do e = 1, model%nelem
+         if (element_order(model%elem_type(e)) == 2) &
+            second_node(model%elem_conn(model%elem_ptr(e):model%elem_ptr(e + 1) - 1)) = .true.
+      end do
+      do k = 1, size(model%pairs)
+         do r = 1, 2
+            isurf = model%pairs(k)%slave
+            if (r == 2) isurf = model%pairs(k)%master
+            if (isurf < 1 .or. isurf > size(model%surfaces)) cycle
+            associate (s => model%surfaces(isurf))
+               id = ''
+               if (s%kind == surface_element .and. allocated(s%elem)) then
+                  do e = 1, size(s%elem)
+                     if (element_order(model%elem_type(s%elem(e))) == 2) then
+                        write (id, '(i0)') model%elem_id(s%elem(e))
+                        exit
+                     end if
+                  end do
+               else if (allocated(s%nodes)) then
+                  do e = 1, size(s%nodes)
+                     if (second_node(s%nodes(e))) then
+                        write (id, '(a,i0)') 'node ', model%node_id(s%nodes(e))
+                        exit
+                     end if
+                  end do
+               end if
+               if (len_trim(id) > 0) then
+                  if (s%kind == surface_element) id = 'element '//trim(id)
+                  call append_message(error, location_string(model, s%loc)//': error: contact surface '// &
+                                      s%name//' is on a second-order element ('//trim(id)//'): contact on '// &
+                                      'sides with a middle node is not supported; use first-order elements '// &
+                                      '(VPE/VPS, CPE4/CPS4, CPE3/CPS3) along contact surfaces', err_input)
+                  return
+               end if
+            end associate
+         end do
+      end do
+   end subroutine check_contact_order
+
+   !> '' when every side node of a second-order virtual element (corners
+   !> xy(:, 1:n/2), side nodes after them) sits at the middle of its side,
+   !> within vem2_side_rtol of the side's length; else what is wrong.
+   function side_node_defect(model, conn, xy) result(what)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: conn(:)
+      real(wp), intent(in) :: xy(:, :)
+      character(len=:), allocatable :: what
+      integer :: i, nc, j
+      real(wp) :: off, len_side
+      character(len=24) :: a, b, c
+      what = ''
+      nc = size(xy, 2)/2
+      do i = 1, nc
+         j = mod(i, nc) + 1
+         len_side = norm2(xy(:, j) - xy(:, i))
+         off = norm2(xy(:, nc + i) - 0.5_wp*(xy(:, i) + xy(:, j)))
+         if (off > vem2_side_rtol*len_side) then
+            write (a, '(i0)') model%node_id(conn(nc + i))
+            write (b, '(i0)') model%node_id(conn(i))
+            write (c, '(i0)') model%node_id(conn(j))
+            what = 'has its side node '//trim(a)//' off the middle of side '//trim(b)//'-'//trim(c)// &
+                   ' (by '//real_text(off/len_side)//' of the side''s length): the second-order VEM '// &
+                   'has straight sides with the side node at the middle (nodes: the corners, then '// &
+                   'one node per side in order)'
+            return
+         end if
+      end do
+   end function side_node_defect
 
    !> What is wrong with one element's shape ('' when nothing): zero area,
    !> coincident nodes (a zero-length side has no normal, and a pinched polygon

@@ -8,10 +8,12 @@
 !> length * thickness), STATUS (1 closed, 0 open, 2 slid off the master's end), PAIR.
 module vemcontact_output_contact
    use vemcontact_kinds, only: wp, ip, i8
-   use vemcontact_error, only: error_t, fatal_error, err_io
+   use vemcontact_error, only: error_t
    use vemcontact_output_base64, only: as_bytes
-   use vemcontact_output_vtu, only: put, put_array, byte_order, int_type_name, itoa, replace_file
+   use vemcontact_output_vtu, only: put, put_array, vtk_file_attributes, int_type_name, itoa, finish_file
+   use vemcontact_safe_file, only: safe_file_t
    use vemcontact_contact_table, only: contact_table_t
+   use vemcontact_output_selection, only: field_selection_t
    implicit none
    private
 
@@ -20,32 +22,48 @@ module vemcontact_output_contact
 
 contains
 
-   !> CSV of the entries of `tab` that belong to pair `ipair`, full precision.
-   subroutine write_contact_csv(path, tab, ipair, error)
+   !> CSV of the entries of `tab` that belong to pair `ipair`, full precision; with
+   !> `sel` only the selected columns of COPEN, CPRESS, CSLIP (node, x, y, CNAREA and
+   !> STATUS always).
+   subroutine write_contact_csv(path, tab, ipair, error, sel)
       character(len=*), intent(in) :: path
       type(contact_table_t), intent(in) :: tab
       integer, intent(in) :: ipair
       type(error_t), allocatable, intent(out) :: error
-      integer :: unit, ios, k
-      character(len=512) :: msg
-      open (newunit=unit, file=path//'.tmp', status='replace', action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
-         return
-      end if
-      write (unit, '(a)', iostat=ios) 'node,x,y,COPEN,CPRESS,CSLIP,CNAREA,STATUS'
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
+      type(safe_file_t) :: out
+      integer :: k
+      character(len=32) :: num
+      character(len=:), allocatable :: head, line
+      if (present(sel)) w = sel
+      call out%open(path, error)
+      if (allocated(error)) return
+      head = 'node,x,y'
+      if (w%copen) head = head//',COPEN'
+      if (w%cpress) head = head//',CPRESS'
+      if (w%cslip) head = head//',CSLIP'
+      call out%write(head//',CNAREA,STATUS'//new_line('a'))
       do k = 1, size(tab%node_id)
          if (tab%pair(k) /= ipair) cycle
-         if (ios /= 0) exit
-         write (unit, '(i0,6(",",es24.16e3),",",a)', iostat=ios) tab%node_id(k), tab%x(:, k), &
-            tab%copen(k), tab%cpress(k), tab%cslip(k), tab%cnarea(k), status_name(tab%status(k))
+         write (num, '(i0)') tab%node_id(k)
+         line = trim(num)
+         call column(tab%x(1, k))
+         call column(tab%x(2, k))
+         if (w%copen) call column(tab%copen(k))
+         if (w%cpress) call column(tab%cpress(k))
+         if (w%cslip) call column(tab%cslip(k))
+         call column(tab%cnarea(k))
+         call out%write(line//','//status_name(tab%status(k))//new_line('a'))
       end do
-      close (unit)
-      if (ios /= 0) then
-         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
-         return
-      end if
-      call replace_file(path//'.tmp', path, error)
+      ! a failed write is reported (file and reason) by the commit
+      call out%commit(error)
+   contains
+      subroutine column(v)
+         real(wp), intent(in) :: v
+         write (num, '(",",es24.16e3)') v
+         line = line//trim(num)
+      end subroutine column
    end subroutine write_contact_csv
 
    !> CSV name of a STATUS value.
@@ -62,56 +80,63 @@ contains
       end select
    end function status_name
 
-   !> All entries of `tab` as VTK vertices with point data COPEN, CPRESS, CSLIP, CNAREA, STATUS, PAIR, NODE_ID.
-   subroutine write_contact_vtu(path, tab, error)
+   !> All entries of `tab` as VTK vertices with point data U (the slave nodes'
+   !> displacements, so that warping moves them with the mesh), COPEN, CPRESS,
+   !> CSLIP, CNAREA, STATUS, PAIR, NODE_ID; zlib-compressed arrays unless
+   !> `compress` is present and false.  With `sel` only the selected of U, COPEN,
+   !> CPRESS and CSLIP are written (the labels CNAREA, STATUS, PAIR, NODE_ID always).
+   subroutine write_contact_vtu(path, tab, u, error, compress, sel)
       character(len=*), intent(in) :: path
       type(contact_table_t), intent(in) :: tab
+      real(wp), intent(in) :: u(:, :)     !< (2, nnode) the step's reported displacements
       type(error_t), allocatable, intent(out) :: error
+      logical, intent(in), optional :: compress
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=1), parameter :: nl = new_line('a')
       character(len=:), allocatable :: itype
-      character(len=512) :: msg
       real(wp), allocatable :: xyz(:, :)
       integer(ip), allocatable :: ibuf(:)
-      integer :: unit, ios
+      type(safe_file_t) :: unit
+      integer :: ios
       integer(ip) :: n, k
+      logical :: z
+      z = .true.
+      if (present(compress)) z = compress
+      if (present(sel)) w = sel
       n = size(tab%node_id)
       itype = int_type_name()
-      open (newunit=unit, file=path//'.tmp', access='stream', form='unformatted', status='replace', &
-            action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//path//'.tmp'' for writing: '//trim(msg), err_io)
-         return
-      end if
-      call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0" byte_order="' &
-               //byte_order()//'" header_type="UInt64">'//nl//'<UnstructuredGrid>'//nl &
+      call unit%open(path, error)
+      if (allocated(error)) return
+      ios = 0
+      call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0"' &
+               //vtk_file_attributes(z)//'>'//nl//'<UnstructuredGrid>'//nl &
                //'<Piece NumberOfPoints="'//itoa(int(n, i8))//'" NumberOfCells="'//itoa(int(n, i8))//'">'//nl &
-               //'<PointData>'//nl, ios)
-      call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios)
-      call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios)
-      call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios)
-      call put_array(unit, 'type="Float64" Name="CNAREA"', as_bytes(tab%cnarea), ios)
-      ibuf = int(tab%status, ip)
-      call put_array(unit, 'type="'//itype//'" Name="STATUS"', as_bytes(ibuf), ios)
-      ibuf = int(tab%pair, ip)
-      call put_array(unit, 'type="'//itype//'" Name="PAIR"', as_bytes(ibuf), ios)
-      call put_array(unit, 'type="'//itype//'" Name="NODE_ID"', as_bytes(tab%node_id), ios)
-      call put(unit, '</PointData>'//nl//'<Points>'//nl, ios)
+               //'<PointData'//trim(merge(' Vectors="U"', '            ', w%u))//'>'//nl, ios)
       allocate (xyz(3, n))
+      xyz(1:2, :) = u(:, tab%node)
+      xyz(3, :) = 0.0_wp
+      if (w%u) call put_array(unit, 'type="Float64" Name="U" NumberOfComponents="3"', as_bytes(xyz), ios, z)
+      if (w%copen) call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios, z)
+      if (w%cpress) call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios, z)
+      if (w%cslip) call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios, z)
+      call put_array(unit, 'type="Float64" Name="CNAREA"', as_bytes(tab%cnarea), ios, z)
+      ibuf = int(tab%status, ip)
+      call put_array(unit, 'type="'//itype//'" Name="STATUS"', as_bytes(ibuf), ios, z)
+      ibuf = int(tab%pair, ip)
+      call put_array(unit, 'type="'//itype//'" Name="PAIR"', as_bytes(ibuf), ios, z)
+      call put_array(unit, 'type="'//itype//'" Name="NODE_ID"', as_bytes(tab%node_id), ios, z)
+      call put(unit, '</PointData>'//nl//'<Points>'//nl, ios)
       xyz(1:2, :) = tab%x
       xyz(3, :) = 0.0_wp
-      call put_array(unit, 'type="Float64" Name="Points" NumberOfComponents="3"', as_bytes(xyz), ios)
+      call put_array(unit, 'type="Float64" Name="Points" NumberOfComponents="3"', as_bytes(xyz), ios, z)
       call put(unit, '</Points>'//nl//'<Cells>'//nl, ios)
       ibuf = [(k - 1_ip, k=1, n)]
-      call put_array(unit, 'type="'//itype//'" Name="connectivity"', as_bytes(ibuf), ios)
+      call put_array(unit, 'type="'//itype//'" Name="connectivity"', as_bytes(ibuf), ios, z)
       ibuf = ibuf + 1_ip
-      call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios)
-      call put_array(unit, 'type="UInt8" Name="types"', repeat(achar(1), n), ios)   ! VTK_VERTEX
+      call put_array(unit, 'type="'//itype//'" Name="offsets"', as_bytes(ibuf), ios, z)
+      call put_array(unit, 'type="UInt8" Name="types"', repeat(achar(1), n), ios, z)   ! VTK_VERTEX
       call put(unit, '</Cells>'//nl//'</Piece>'//nl//'</UnstructuredGrid>'//nl//'</VTKFile>'//nl, ios)
-      close (unit)
-      if (ios /= 0) then
-         call fatal_error(error, 'error while writing '''//path//'.tmp''', err_io)
-         return
-      end if
-      call replace_file(path//'.tmp', path, error)
+      call finish_file(unit, path, ios, error)
    end subroutine write_contact_vtu
 end module vemcontact_output_contact

@@ -1,18 +1,25 @@
 !> HDF5 results file: the mesh once, then one group per step; the layout is
-!> documented in docs/output-format.md.  The file is flushed after every step,
-!> so a run that fails later keeps the completed steps readable.
+!> documented in docs/output-format.md.  The file is written under a unique
+!> temporary name beside its final name (created by src/safe_file.f90 without
+!> following links) and renamed to the final name by `close` only after HDF5
+!> closed it without error and it was fsync'ed; `close` also writes the root
+!> attribute `complete` (1: the run finished).  `discard` (and finalization)
+!> removes the temporary instead: a killed or failed run never leaves a torn
+!> file under the final name.
 !>
 !> This module is an interop spot: the HDF5 Fortran API passes buffers as
 !> `c_ptr` and handles as `hid_t`/`hsize_t`.  Every HDF5 return code is checked
 !> and turned into an `error_t` naming the file and the object; HDF5's own
-!> error printing is switched off, the message we return replaces it.
+!> error printing is switched off, the message we return replaces it (with the
+!> system's reason, such as "No space left on device", read from HDF5's error
+!> stack by src/output/hdf5_shim.c).
 !> Datasets are stored little-endian (`H5T_IEEE_F64LE`, `H5T_STD_I32LE`,
 !> `H5T_STD_I64LE`) whatever the host, and written contiguous and uncompressed:
 !> that is the fastest to write and to read back in slices.
 module vemcontact_output_hdf5
-   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_null_ptr
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_null_ptr, c_char, c_int, c_null_char
    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5lexists_f, h5fcreate_f, h5fclose_f, &
-                   h5fflush_f, h5gcreate_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
+                   h5fflush_f, h5ldelete_f, h5gcreate_f, h5gopen_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
                    h5sclose_f, h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, &
                    h5aclose_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
                    h5kind_to_type, H5F_ACC_TRUNC_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, &
@@ -20,7 +27,9 @@ module vemcontact_output_hdf5
                    H5_REAL_KIND, H5_INTEGER_KIND
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
-   use vemcontact_model, only: model_t
+   use vemcontact_model, only: model_t, string_t
+   use vemcontact_output_selection, only: field_selection_t
+   use vemcontact_safe_file, only: create_temporary, publish_file, remove_file
    implicit none
    private
 
@@ -28,13 +37,16 @@ module vemcontact_output_hdf5
    character(len=*), parameter, public :: h5_format_name = 'vemcontact-results'
    integer(ip), parameter, public :: h5_format_version = 1_ip
 
-   !> Writer of one results file.  `open` creates (truncates) it, `write_mesh`
-   !> writes /mesh once, `write_step` adds /steps/NNNN, `close` (or finalization)
-   !> closes it.
+   !> Writer of one results file.  `open` creates its temporary, `write_mesh`
+   !> writes /mesh once, `write_step` adds /steps/NNNN, `discard_step` removes a
+   !> step that could not be completed, `close` puts the file under its name,
+   !> `discard` (or finalization) abandons it.
    type, public :: h5_writer_t
       private
       integer(hid_t) :: file = -1
       character(len=:), allocatable :: path
+      !> the temporary being written, renamed to `path` by `close`
+      character(len=:), allocatable :: tmp
       !> sizes of the mesh written, to check the steps against; -1 before write_mesh
       integer(ip) :: nnode = -1, nelem = -1
    contains
@@ -43,14 +55,19 @@ module vemcontact_output_hdf5
       procedure :: write_step => h5_write_step
       procedure :: write_contact => h5_write_contact
       procedure :: write_iterations => h5_write_iterations
+      procedure :: discard_step => h5_discard_step
+      procedure :: write_labels => h5_write_labels
+      procedure :: write_results => h5_write_results
       procedure :: close => h5_close
+      procedure :: discard => h5_discard
       procedure :: is_open => h5_is_open
       final :: h5_final
    end type h5_writer_t
 
 contains
 
-   !> Create (or truncate) the file `path`, write the root attributes and /steps.
+   !> Start the file `path` (as a new temporary beside it), write the root
+   !> attributes and /steps.
    subroutine h5_open(self, path, error)
       class(h5_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path
@@ -58,7 +75,7 @@ contains
       integer :: hdferr
       integer(hid_t) :: grp
 
-      call h5_close(self)
+      call h5_discard(self)
       self%path = path
       self%nnode = -1
       self%nelem = -1
@@ -67,9 +84,13 @@ contains
       if (failed(self, hdferr, 'initialising the HDF5 library', error)) return
       call h5eset_auto_f(0, hdferr)
       if (failed(self, hdferr, 'switching off HDF5 error printing', error)) return
-      call h5fcreate_f(path, H5F_ACC_TRUNC_F, self%file, hdferr)
+      call create_temporary(path, self%tmp, error)
+      if (allocated(error)) return
+      ! the temporary was just created empty and exclusively: HDF5 takes it over
+      call h5fcreate_f(self%tmp, H5F_ACC_TRUNC_F, self%file, hdferr)
       if (failed(self, hdferr, 'creating the file', error)) then
          self%file = -1
+         call remove_file(self%tmp)
          return
       end if
       call put_string_attribute(self, self%file, 'format', h5_format_name, error)
@@ -149,10 +170,11 @@ contains
    end function mesh_arrays_fit
 
    !> Write /steps/NNNN (index zero-padded to 4 digits, wider beyond 9999) with
-   !> attributes name and time and datasets U, S_element, S_node; then flush.
-   !> With `indicator`: the dataset ERROR_INDICATOR (nelem) and the step attributes
-   !> error_estimate and energy_norm (vemcontact_post_estimate).
-   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error, indicator, estimate, energy)
+   !> attributes name and time and datasets U, S_element, S_node (with `sel`: those
+   !> selected); then flush.  With `indicator`, written with S: the dataset
+   !> ERROR_INDICATOR (nelem) and the step attributes error_estimate and energy_norm
+   !> (vemcontact_post_estimate).
+   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error, sel, indicator, estimate, energy)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
       character(len=*), intent(in) :: name
@@ -161,14 +183,17 @@ contains
       real(wp), intent(in) :: s_elem(:, :)   !< (4, nelem)
       real(wp), intent(in) :: s_node(:, :)   !< (4, nnode)
       type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
       real(wp), intent(in), optional :: indicator(:)  !< (nelem) error indicator per cell
       real(wp), intent(in), optional :: estimate      !< the global error estimate
       real(wp), intent(in), optional :: energy        !< energy norm of the discrete stress
+      type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
       integer(hid_t) :: grp
       integer :: hdferr
 
+      if (present(sel)) w = sel
       if (.not. check_open(self, 'write_step', error)) return
       if (size(u, 1) /= 2 .or. size(s_elem, 1) /= 4 .or. size(s_node, 1) /= 4 &
           .or. size(s_node, 2) /= size(u, 2) .or. self%nnode < 0 &
@@ -198,17 +223,19 @@ contains
       if (failed(self, hdferr, 'creating group '//gname, error)) return
       call put_string_attribute(self, grp, 'name', name, error)
       if (.not. allocated(error)) call put_real_attribute(self, grp, 'time', time, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'U', shape(u, hsize_t), u, error)
-      if (.not. allocated(error)) &
+      if (.not. allocated(error) .and. w%u) call put_real(self, grp, 'U', shape(u, hsize_t), u, error)
+      if (.not. allocated(error) .and. w%s) &
          call put_real(self, grp, 'S_element', shape(s_elem, hsize_t), s_elem, error)
-      if (.not. allocated(error)) &
+      if (.not. allocated(error) .and. w%s) &
          call put_real(self, grp, 'S_node', shape(s_node, hsize_t), s_node, error)
-      if (present(indicator) .and. .not. allocated(error)) &
-         call put_real(self, grp, 'ERROR_INDICATOR', [int(self%nelem, hsize_t)], indicator(1:self%nelem), error)
-      if (present(estimate) .and. .not. allocated(error)) &
-         call put_real_attribute(self, grp, 'error_estimate', estimate, error)
-      if (present(energy) .and. .not. allocated(error)) &
-         call put_real_attribute(self, grp, 'energy_norm', energy, error)
+      if (present(indicator) .and. w%s) then
+         if (.not. allocated(error)) &
+            call put_real(self, grp, 'ERROR_INDICATOR', [int(self%nelem, hsize_t)], indicator(1:self%nelem), error)
+         if (present(estimate) .and. .not. allocated(error)) &
+            call put_real_attribute(self, grp, 'error_estimate', estimate, error)
+         if (present(energy) .and. .not. allocated(error)) &
+            call put_real_attribute(self, grp, 'energy_norm', energy, error)
+      end if
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
@@ -217,19 +244,23 @@ contains
    end subroutine h5_write_step
 
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
-   !> undeformed coordinates, COPEN, CPRESS, CSLIP and STATUS (1 closed, 0 open); then flush.
-   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error)
+   !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CNAREA
+   !> and STATUS (1 closed, 0 open); then flush.
+   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
       real(wp), intent(in) :: x(:, :), copen(:), cpress(:), cslip(:), cnarea(:)
       integer, intent(in) :: status(:)
       type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
       integer(hid_t) :: grp
       integer(ip), allocatable :: st(:)
       integer :: hdferr
+      if (present(sel)) w = sel
       if (.not. check_open(self, 'write_contact', error)) return
       call contact_group(self, istep, gname, error)
       if (allocated(error)) return
@@ -240,9 +271,12 @@ contains
       st = int(status, ip)
       call put_int(self, grp, 'node_ids', shape(node_id, hsize_t), node_id, error)
       if (.not. allocated(error)) call put_real(self, grp, 'coordinates', shape(x, hsize_t), x, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
+      if (.not. allocated(error) .and. w%copen) &
+         call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
+      if (.not. allocated(error) .and. w%cpress) &
+         call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
+      if (.not. allocated(error) .and. w%cslip) &
+         call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
       if (.not. allocated(error)) call put_real(self, grp, 'CNAREA', shape(cnarea, hsize_t), cnarea, error)
       if (.not. allocated(error)) call put_int(self, grp, 'STATUS', shape(st, hsize_t), st, error)
       call h5gclose_f(grp, hdferr)
@@ -291,6 +325,113 @@ contains
       if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_iterations
 
+   !> Add to /mesh (after write_mesh) the labels of the elements: element_set
+   !> (index into element_set_names, the set of the element's *SOLID SECTION, 1-based,
+   !> 0 = none), element_part (connected body, 1-based), and the names of all
+   !> element sets and materials in deck order (material ids are element_material).
+   subroutine h5_write_labels(self, model, elem_set, elem_part, error)
+      class(h5_writer_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: elem_set(:), elem_part(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(string_t), allocatable :: names(:)
+      integer(hid_t) :: grp
+      integer :: hdferr, k
+      if (.not. check_open(self, 'write_labels', error)) return
+      if (self%nelem < 0 .or. size(elem_set) /= self%nelem .or. size(elem_part) /= self%nelem) then
+         call fatal_error(error, 'write_labels: array sizes do not match the mesh written ('// &
+                          self%path//')', err_internal)
+         return
+      end if
+      call h5gopen_f(self%file, '/mesh', grp, hdferr)
+      if (failed(self, hdferr, 'opening group /mesh', error)) return
+      call put_int(self, grp, 'element_set', shape(elem_set, hsize_t), elem_set, error)
+      if (.not. allocated(error)) &
+         call put_int(self, grp, 'element_part', shape(elem_part, hsize_t), elem_part, error)
+      ! filled one by one: gfortran 12 loses deferred-length components in an
+      ! implied-do array constructor of derived type
+      allocate (names(0))
+      if (allocated(model%elsets)) then
+         deallocate (names)
+         allocate (names(size(model%elsets)))
+         do k = 1, size(model%elsets)
+            names(k)%s = model%elsets(k)%name
+         end do
+      end if
+      if (.not. allocated(error)) call put_strings(self, grp, 'element_set_names', names, error)
+      deallocate (names)
+      allocate (names(0))
+      if (allocated(model%materials)) then
+         deallocate (names)
+         allocate (names(size(model%materials)))
+         do k = 1, size(model%materials)
+            names(k)%s = model%materials(k)%name
+         end do
+      end if
+      if (.not. allocated(error)) call put_strings(self, grp, 'material_names', names, error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group /mesh', error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing', error)) return
+   end subroutine h5_write_labels
+
+   !> Add to /steps/NNNN (after write_step): strains E_element (4, nelem) and
+   !> E_node (4, nnode), reaction forces RF (2, nnode), RF_total (2) over all
+   !> nodes, and RF_sets/names, RF_sets/RF (2, nsets): the totals over the
+   !> constrained node sets (with `sel`: E and RF as selected); then flush.
+   subroutine h5_write_results(self, istep, e_elem, e_node, rf, set_names, set_rf, error, sel)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep
+      real(wp), intent(in) :: e_elem(:, :), e_node(:, :), rf(:, :), set_rf(:, :)
+      type(string_t), intent(in) :: set_names(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t), intent(in), optional :: sel
+      type(field_selection_t) :: w
+      character(len=:), allocatable :: gname
+      character(len=24) :: buf
+      integer(hid_t) :: grp, sub
+      integer :: hdferr
+      logical :: bad
+      if (present(sel)) w = sel
+      if (.not. check_open(self, 'write_results', error)) return
+      if (size(e_elem, 1) /= 4 .or. size(e_elem, 2) /= self%nelem .or. size(e_node, 1) /= 4 &
+          .or. size(e_node, 2) /= self%nnode .or. size(rf, 1) /= 2 .or. size(rf, 2) /= self%nnode &
+          .or. size(set_rf, 1) /= 2 .or. size(set_rf, 2) /= size(set_names)) then
+         call fatal_error(error, 'write_results: array shapes do not match the mesh written ('// &
+                          self%path//')', err_internal)
+         return
+      end if
+      if (istep <= 9999) then
+         write (buf, '(i4.4)') istep
+      else
+         write (buf, '(i0)') istep
+      end if
+      gname = '/steps/'//trim(buf)
+      call h5gopen_f(self%file, gname, grp, hdferr)
+      if (failed(self, hdferr, 'opening group '//gname, error)) return
+      if (w%e) call put_real(self, grp, 'E_element', shape(e_elem, hsize_t), e_elem, error)
+      if (.not. allocated(error) .and. w%e) &
+         call put_real(self, grp, 'E_node', shape(e_node, hsize_t), e_node, error)
+      if (.not. allocated(error) .and. w%rf) call put_real(self, grp, 'RF', shape(rf, hsize_t), rf, error)
+      if (.not. allocated(error) .and. w%rf) &
+         call put_real(self, grp, 'RF_total', [2_hsize_t], sum(rf, dim=2), error)
+      if (.not. allocated(error) .and. w%rf) then
+         call h5gcreate_f(grp, 'RF_sets', sub, hdferr)
+         if (.not. failed(self, hdferr, 'creating group '//gname//'/RF_sets', error)) then
+            call put_strings(self, sub, 'names', set_names, error)
+            if (.not. allocated(error)) call put_real(self, sub, 'RF', shape(set_rf, hsize_t), set_rf, error)
+            call h5gclose_f(sub, hdferr)
+            if (.not. allocated(error)) bad = failed(self, hdferr, 'closing group '//gname//'/RF_sets', error)
+         end if
+      end if
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group '//gname, error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing after '//gname, error)) return
+   end subroutine h5_write_results
+
    !> The name of /steps/NNNN/contact, created when it does not exist yet.
    subroutine contact_group(self, istep, gname, error)
       class(h5_writer_t), intent(inout) :: self
@@ -317,20 +458,66 @@ contains
       end if
    end subroutine contact_group
 
-   !> Close the file (nothing if not open).  Without `error`, a failure to close is
-   !> ignored: use the argument where the file's completeness matters.
-   subroutine h5_close(self, error)
+   !> Remove /steps/NNNN if it exists: a step that failed part way, so that the
+   !> file lists only steps complete in every results file.
+   subroutine h5_discard_step(self, istep, error)
       class(h5_writer_t), intent(inout) :: self
-      type(error_t), allocatable, intent(out), optional :: error
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(out) :: error
+      character(len=24) :: buf
       integer :: hdferr
-      type(error_t), allocatable :: err
+      logical :: exists
+      if (.not. check_open(self, 'discard_step', error)) return
+      if (istep <= 9999) then
+         write (buf, '(i4.4)') istep
+      else
+         write (buf, '(i0)') istep
+      end if
+      call h5lexists_f(self%file, '/steps/'//trim(buf), exists, hdferr)
+      if (failed(self, hdferr, 'looking up /steps/'//trim(buf), error)) return
+      if (.not. exists) return
+      call h5ldelete_f(self%file, '/steps/'//trim(buf), hdferr)
+      if (failed(self, hdferr, 'removing the incomplete /steps/'//trim(buf), error)) return
+   end subroutine h5_discard_step
+
+   !> Finish the file: root attribute `complete` (1 when `complete` is true: the
+   !> run finished; 0 by default), close it with HDF5, fsync it and rename it to
+   !> its final name.  On any failure the temporary is removed (no file of that
+   !> name, rather than a torn one) and `error` says why.  Nothing if not open.
+   subroutine h5_close(self, error, complete)
+      class(h5_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: error
+      logical, intent(in), optional :: complete
+      integer :: hdferr
+      integer(ip) :: flag
+      if (self%file < 0) return
+      flag = 0_ip
+      if (present(complete)) then
+         if (complete) flag = 1_ip
+      end if
+      call put_int_attribute(self, self%file, 'complete', flag, error)
+      if (allocated(error)) then
+         call h5_discard(self)
+         return
+      end if
+      call h5fclose_f(self%file, hdferr)
+      self%file = -1
+      if (failed(self, hdferr, 'closing the file', error)) then
+         call remove_file(self%tmp)
+         return
+      end if
+      call publish_file(self%tmp, self%path, error)
+   end subroutine h5_close
+
+   !> Abandon the file: close it (errors ignored) and remove the temporary.
+   subroutine h5_discard(self)
+      class(h5_writer_t), intent(inout) :: self
+      integer :: hdferr
       if (self%file < 0) return
       call h5fclose_f(self%file, hdferr)
       self%file = -1
-      if (failed(self, hdferr, 'closing the file', err)) then
-         if (present(error)) call move_alloc(err, error)
-      end if
-   end subroutine h5_close
+      call remove_file(self%tmp)
+   end subroutine h5_discard
 
    !> True between a successful `open` and `close`.
    pure logical function h5_is_open(self)
@@ -338,10 +525,10 @@ contains
       h5_is_open = self%file >= 0
    end function h5_is_open
 
-   !> A writer going out of scope closes its file.
+   !> A writer going out of scope abandons a file it did not close.
    subroutine h5_final(self)
       type(h5_writer_t), intent(inout) :: self
-      call h5_close(self)
+      call h5_discard(self)
    end subroutine h5_final
 
    ! ---------------------------------------------------------------- helpers
@@ -353,11 +540,27 @@ contains
       character(len=*), intent(in) :: what
       type(error_t), allocatable, intent(inout) :: error
       character(len=16) :: code
+      character(kind=c_char, len=256) :: reason
+      integer :: n
+      interface
+         subroutine c_system_reason(buf, len) bind(C, name='vc_h5_system_reason')
+            import :: c_char, c_int
+            character(kind=c_char), intent(out) :: buf(*)
+            integer(c_int), value :: len
+         end subroutine c_system_reason
+      end interface
       failed = hdferr < 0
       if (.not. failed) return
       write (code, '(i0)') hdferr
-      call fatal_error(error, 'HDF5 error (code '//trim(code)//') '//what//' in '''// &
-                       self%path//'''', err_io)
+      call c_system_reason(reason, int(len(reason), c_int))
+      n = max(0, index(reason, c_null_char) - 1)
+      if (n > 0) then
+         call fatal_error(error, 'error: cannot write '''//self%path//''': '//reason(1:n)// &
+                          ' (HDF5 error '//trim(code)//' '//what//')', err_io)
+      else
+         call fatal_error(error, 'HDF5 error (code '//trim(code)//') '//what//' in '''// &
+                          self%path//'''', err_io)
+      end if
    end function failed
 
    logical function check_open(self, what, error)
@@ -453,6 +656,47 @@ contains
       call put_dataset(self, loc, name, H5T_STD_I64LE, h5kind_to_type(i8, H5_INTEGER_KIND), dims, &
                        buf, error)
    end subroutine put_i8
+
+   !> 1-D dataset of fixed-length, null-padded ASCII strings, as long as the
+   !> longest value (h5py returns `bytes`).
+   subroutine put_strings(self, loc, name, values, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      type(string_t), intent(in) :: values(:)
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=1), allocatable, target :: buf(:, :)
+      integer(hid_t) :: stype
+      type(c_ptr) :: p
+      integer :: hdferr, ignore, k, j, width
+      width = 1
+      do k = 1, size(values)
+         width = max(width, len(values(k)%s))
+      end do
+      allocate (buf(width, size(values)))
+      buf = achar(0)
+      do k = 1, size(values)
+         do j = 1, len(values(k)%s)
+            buf(j, k) = values(k)%s(j:j)
+         end do
+      end do
+      p = c_null_ptr
+      if (size(values) > 0) p = c_loc(buf(1, 1))
+      call h5tcopy_f(H5T_C_S1, stype, hdferr)
+      if (failed(self, hdferr, 'creating the string type of '//name, error)) return
+      call h5tset_size_f(stype, int(width, size_t), hdferr)
+      if (.not. failed(self, hdferr, 'sizing the string type of '//name, error)) then
+         call h5tset_strpad_f(stype, H5T_STR_NULLPAD_F, hdferr)
+         if (.not. failed(self, hdferr, 'padding the string type of '//name, error)) &
+            call put_dataset(self, loc, name, stype, stype, [size(values, kind=hsize_t)], p, error)
+      end if
+      if (allocated(error)) then
+         call h5tclose_f(stype, ignore)
+         return
+      end if
+      call h5tclose_f(stype, hdferr)
+      if (failed(self, hdferr, 'closing the string type of '//name, error)) return
+   end subroutine put_strings
 
    !> Scalar attribute of `file_type` from `buf` of `mem_type`.
    subroutine put_attribute(self, loc, name, file_type, mem_type, buf, error)

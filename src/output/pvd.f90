@@ -1,14 +1,15 @@
 !> ParaView collection (.pvd) of the .vtu files of the steps written so far.
-!> The driver rewrites it after every step, through a temporary file and an
-!> atomic rename, so a run that stops part way leaves a valid collection of the
+!> The driver rewrites it after every step, through `safe_file_t` (a unique
+!> temporary, checked writes, fsync, atomic rename), so a run that stops part way leaves a valid collection of the
 !> completed steps.  File names are stored relative to the .pvd's folder so that
 !> the result folder can be moved or copied as a whole.
 module vemcontact_output_pvd
    use vemcontact_kinds, only: wp
-   use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
+   use vemcontact_error, only: error_t, fatal_error, err_internal
    use vemcontact_model, only: string_t
-   use vemcontact_output_vtu, only: replace_file
+   use vemcontact_safe_file, only: safe_file_t
    use vemcontact_path, only: dirname
+   use vemcontact_output_xml, only: xml_escape
    implicit none
    private
 
@@ -28,11 +29,11 @@ contains
       !> ParaView part of each file (default 0): the mesh is part 0, contact points part 1
       integer, intent(in), optional :: parts(:)
       character(len=12) :: pbuf
-      character(len=:), allocatable :: tmp, dir, rel, text
+      character(len=:), allocatable :: dir, rel, text
       character(len=32) :: tbuf
-      character(len=512) :: msg
       character(len=1), parameter :: nl = new_line('a')
-      integer :: k, unit, ios
+      type(safe_file_t) :: out
+      integer :: k
       logical :: ok
 
       if (size(files) /= size(times)) then
@@ -60,25 +61,10 @@ contains
       end do
       text = text//'</Collection>'//nl//'</VTKFile>'//nl
 
-      tmp = path//'.tmp'
-      open (newunit=unit, file=tmp, access='stream', form='unformatted', status='replace', &
-            action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot open '''//tmp//''' for writing: '//trim(msg), err_io)
-         return
-      end if
-      write (unit, iostat=ios, iomsg=msg) text
-      if (ios /= 0) then
-         close (unit, status='delete', iostat=ios)
-         call fatal_error(error, 'error while writing '''//tmp//''': '//trim(msg), err_io)
-         return
-      end if
-      close (unit, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call fatal_error(error, 'cannot close '''//tmp//''': '//trim(msg), err_io)
-         return
-      end if
-      call replace_file(tmp, path, error)
+      call out%open(path, error)
+      if (allocated(error)) return
+      call out%write(text)
+      call out%commit(error)
    end subroutine write_pvd
 
    !> `file` expressed relative to the folder `dir`, lexically ('.' and '..'
@@ -176,28 +162,4 @@ contains
       end do
       comps = work(1:n)
    end subroutine split_path
-
-   !> Escape the five XML special characters for use in an attribute value.
-   pure function xml_escape(s) result(e)
-      character(len=*), intent(in) :: s
-      character(len=:), allocatable :: e
-      integer :: k
-      e = ''
-      do k = 1, len(s)
-         select case (s(k:k))
-         case ('&')
-            e = e//'&amp;'
-         case ('<')
-            e = e//'&lt;'
-         case ('>')
-            e = e//'&gt;'
-         case ('"')
-            e = e//'&quot;'
-         case ('''')
-            e = e//'&apos;'
-         case default
-            e = e//s(k:k)
-         end select
-      end do
-   end function xml_escape
 end module vemcontact_output_pvd

@@ -22,10 +22,17 @@ contains
    !> meshes (agglomerated polygons next to fine cells) that is the wrong way round.
    !> The average is per node, so nodes that are not shared between bodies never
    !> mix the bodies' stresses.
-   subroutine nodal_average(model, s_elem, s_node)
+   !>
+   !> `s_at` (optional, (4, size of elem_conn)): each element's own stress at
+   !> each of its nodes (connectivity order), averaged instead of the element
+   !> value: the stress of a second-order element varies over it (linear for
+   !> the k = 2 virtual element), and its nodal values are better estimates at
+   !> the nodes than its mean.
+   subroutine nodal_average(model, s_elem, s_node, s_at)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: s_elem(:, :)    !< (4, nelem)
       real(wp), intent(out) :: s_node(:, :)   !< (4, nnode)
+      real(wp), intent(in), optional :: s_at(:, :)
       integer(ip), allocatable :: count(:)
       integer(ip) :: e, k, n
       allocate (count(model%nnode), source=0_ip)
@@ -33,7 +40,11 @@ contains
       do e = 1, model%nelem
          do k = model%elem_ptr(e), model%elem_ptr(e + 1) - 1
             n = model%elem_conn(k)
-            s_node(:, n) = s_node(:, n) + s_elem(:, e)
+            if (present(s_at)) then
+               s_node(:, n) = s_node(:, n) + s_at(:, k)
+            else
+               s_node(:, n) = s_node(:, n) + s_elem(:, e)
+            end if
             count(n) = count(n) + 1_ip
          end do
       end do

@@ -61,3 +61,22 @@ vc_deck_test(err_stab_fem ${VC_DECKS}/err_stab_fem.inp 1
   "err_stab_fem.inp:17: error: STABILIZATION= on FEM element 1")
 vc_deck_test(err_stab_cpe4 ${VC_DECKS}/err_stab_cpe4.inp 1
   "err_stab_cpe4.inp:17: error: STABILIZATION= on FEM element 1")
+
+# GENERATE ranges are checked before they are expanded (1..2147483647 took 20-60 s)
+vc_deck_test(err_generate_huge ${VC_DECKS}/err_generate_huge.inp 1
+  "err_generate_huge.inp:7: error: 2147483644 of the ids 1 to 2147483647 are not defined nodes [(]the first is 4[)]")
+
+# input ranges: each value within 1e-130..1e130, estimated products within 1e-250..1e250,
+# refused with file:line and the value (the Debug build trapped SIGFPE on these)
+vc_deck_test(err_range_thickness ${VC_DECKS}/err_range_thickness.inp 1
+  "err_range_thickness.inp:29: error: thickness of the section of BEAM = 1.00E[+]307 is beyond 1e-130 .. 1e130")
+vc_deck_test(err_range_stabilization ${VC_DECKS}/err_range_stabilization.inp 1
+  "err_range_stabilization.inp:29: error: STABILIZATION of the section of BEAM = 1.00E[+]307")
+vc_deck_test(err_range_displacement ${VC_DECKS}/err_range_displacement.inp 1
+  "err_range_displacement.inp [(]before the first [*]STEP[)]: error: prescribed displacement = 1.00E[+]307 at node 1")
+vc_deck_test(err_range_density ${VC_DECKS}/err_range_density.inp 1
+  "err_range_density.inp:26: error: density of material UNIT = 1.00E[+]307")
+vc_deck_test(err_range_modulus ${VC_DECKS}/err_range_modulus.inp 1
+  "err_range_modulus.inp:26: error: Young's modulus of material UNIT = 1.00E-307")
+vc_deck_test(err_range_product ${VC_DECKS}/err_range_product.inp 1
+  "err_range_product.inp:29: error: the displacement the loads make .* is about 1e270[)], beyond 1e-250 .. 1e250")

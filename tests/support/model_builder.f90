@@ -3,7 +3,7 @@
 module vemcontact_test_model
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, material_t, string_t, source_loc_t, step_t, &
-                               etype_polygon, etype_quad4, etype_tri3
+                               etype_polygon, etype_quad4, etype_tri3, etype_polygon2, etype_quad8, etype_tri6, form_fem
    implicit none
    private
 
@@ -12,12 +12,15 @@ module vemcontact_test_model
 contains
 
    !> One material, one plane assumption and formulation for all elements.
-   subroutine make_model(x, ptr, conn, young, poisson, plane, form, thick, model)
+   !> `order` = 2 (optional): second-order elements (corners, then side nodes):
+   !> CPE6/CPE8 types for 6 and 8 nodes under form_fem, VPE2 otherwise.
+   subroutine make_model(x, ptr, conn, young, poisson, plane, form, thick, model, order)
       real(wp), intent(in) :: x(:, :)
       integer(ip), intent(in) :: ptr(:), conn(:)
       real(wp), intent(in) :: young, poisson, thick
       integer, intent(in) :: plane, form
       type(model_t), intent(out) :: model
+      integer, intent(in), optional :: order
       integer :: e, n
       model%nnode = size(x, 2)
       model%x = x
@@ -33,6 +36,13 @@ contains
          model%elem_type(e) = etype_polygon
          if (n == 4) model%elem_type(e) = etype_quad4
          if (n == 3) model%elem_type(e) = etype_tri3
+         if (present(order)) then
+            if (order == 2) then
+               model%elem_type(e) = etype_polygon2
+               if (form == form_fem .and. n == 8) model%elem_type(e) = etype_quad8
+               if (form == form_fem .and. n == 6) model%elem_type(e) = etype_tri6
+            end if
+         end if
       end do
       model%elem_plane = plane
       model%elem_form = form

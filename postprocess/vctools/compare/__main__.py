@@ -74,6 +74,8 @@ def format_report(report, tol: Tolerances, top: int) -> list:
                 f" = max(stress atol, penalty {t.penalty[name]:.4g} x COPEN atol)" if t.penalty[name] else
                 " (no closed node in the reference: the stress atol)")
             lines.append(f"atol CPRESS {name}: {a:.3g}{why}")
+    for p in report.notes:
+        lines.append(f"note: {p}")
     for p in report.problems:
         lines.append(f"MISMATCH: {p}")
     if top > 0 and report.worst:

@@ -71,6 +71,7 @@ class Report:
     compared: int = 0
     failed: int = 0
     problems: list = field(default_factory=list)      # structural mismatches, one line each
+    notes: list = field(default_factory=list)         # fields in neither file (output requests), one line each
     mismatched: list = field(default_factory=list)    # (label, nfail, n) per compared array
     worst: list = field(default_factory=list)         # Entry, worst first
     applied: Applied | None = None
@@ -293,7 +294,8 @@ def compare(res: Results, ref: Results, tol: Tolerances | None = None, fields=No
     for name in requested:
         for r in (ref, res):
             if not r.has_field(name):
-                raise CompareError(f"{r.path}: no field {name} in any step")
+                raise CompareError(f"{r.path}: no field {name} in any step (not computed for this model, "
+                                   f"or not selected by the deck's output requests)")
     if steps:
         for r in (ref, res):
             missing = [s for s in steps if s not in r.steps]
@@ -341,6 +343,9 @@ def compare(res: Results, ref: Results, tol: Tolerances | None = None, fields=No
             if name not in b.fields:
                 if name in a.fields:
                     report.problems.append(f"step {s}: {name} in the result but not in the reference")
+                else:
+                    report.notes.append(f"step {s}: {name} not compared: in neither file "
+                                        f"(the deck's output requests do not select it)")
                 continue
             if name not in a.fields:
                 report.problems.append(f"step {s}: {name} missing in the result")

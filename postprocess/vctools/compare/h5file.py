@@ -105,6 +105,10 @@ def _read_open(path, f) -> Results:
     version = int(np.asarray(f.attrs.get("format_version", -1)).reshape(-1)[0])
     if version != FORMAT_VERSION:
         raise CompareError(f"{path}: format_version {version} is not supported (this tool reads {FORMAT_VERSION})")
+    # the completion marker (docs/output-format.md); files of older writers have none
+    if "complete" in f.attrs and int(np.asarray(f.attrs["complete"]).reshape(-1)[0]) != 1:
+        raise CompareError(f"{path}: incomplete results: the run that wrote it stopped with an error "
+                           "(root attribute complete = 0); see its log and rerun the job")
 
     mesh = {}
     for name in MESH_DATASETS:

@@ -12,6 +12,8 @@ TYPES = {
     ("vem", "strain"): "VPE", ("vem", "stress"): "VPS",
     ("fem", "strain"): {3: "CPE3", 4: "CPE4"}, ("fem", "stress"): {3: "CPS3", 4: "CPS4"},
 }
+# the second-order type of each first-order one (corners first, then one node per side)
+SECOND_ORDER = {"VPE": "VPE2", "VPS": "VPS2", "CPE3": "CPE6", "CPE4": "CPE8", "CPS3": "CPS6", "CPS4": "CPS8"}
 
 
 def element_type(formulation, plane, nnode, where):
@@ -54,11 +56,15 @@ def write_deck(m, path_or_file, header_lines=(), node_set_all="NALL"):
         types = {}
         for c in cells:
             t = etype(int(counts[c])) if callable(etype) else etype
+            if m.side_nodes is not None:
+                t = SECOND_ORDER[t]
             types.setdefault(t, []).append(c)
         for t, cs in types.items():
             out.write(f"*ELEMENT, TYPE={t}, ELSET={name}\n")
             for c in cs:
                 nodes = [str(v + 1) for v in m.cell(c)]
+                if m.side_nodes is not None:
+                    nodes += [str(v + 1) for v in m.side_nodes[m.ptr[c]:m.ptr[c + 1]]]
                 head = f"{c + 1}, "
                 # continuation: a line ending in a comma continues on the next
                 chunks = [nodes[j:j + 15] for j in range(0, len(nodes), 15)]

@@ -1,6 +1,7 @@
 """Import of Gmsh .msh files through meshio: formats 2.2 and 4.1, ASCII and binary.
 
-Cells: 3-node triangles and 4-node quads.  Physical groups become sets:
+Cells: 3-node triangles and 4-node quads, or (one order per file) 6-node triangles and
+8-node quads, whose side nodes go to `Mesh.side_nodes`.  Physical groups become sets:
 physical surfaces -> element sets (the first one of a cell names its body); physical
 curves -> node sets and element-side surfaces; physical points -> node sets.
 A file that cannot be read is a MeshError naming the file and the reason.
@@ -18,7 +19,11 @@ from .errors import MeshError
 from .mesh import Mesh
 
 CELL_TYPES = {"triangle": 3, "quad": 4}
-DIM = {"vertex": 0, "line": 1, "triangle": 2, "quad": 2}
+# second-order cells: meshio type -> corners (6-node triangle, 8-node quad); gmsh (and
+# meshio) list the corners, then the side nodes in side order, as Abaqus does
+CELL_TYPES2 = {"triangle6": 3, "quad8": 4}
+LINE_TYPES = {"line", "line3"}      # 2- and 3-node lines (end, end[, middle])
+DIM = {"vertex": 0, "line": 1, "line3": 1, "triangle": 2, "quad": 2, "triangle6": 2, "quad8": 2}
 
 
 def _read(path):
@@ -66,14 +71,15 @@ def read_msh(path, etype="VPE", default_body="BODY"):
         raise MeshError(f"{path}: no nodes or elements (an empty or truncated Gmsh mesh)")
     xy = np.asarray(mesh.points, float)[:, :2]
     cells, cell_groups, lines, line_groups, points, point_groups = [], [], [], [], [], []
+    cell_sides = []
     seen = {}
     for i, block in enumerate(mesh.cells):
         if block.type not in DIM:
             raise MeshError(f"{path}: element type {block.type!r} is not supported "
-                            f"(3-node triangles, 4-node quads, lines and points are)")
+                            f"(3- and 6-node triangles, 4- and 8-node quads, lines and points are)")
         groups = _group_names(mesh, i, block)
         for c, g in zip(np.asarray(block.data, int), groups):
-            if block.type in CELL_TYPES:
+            if block.type in CELL_TYPES or block.type in CELL_TYPES2:
                 # format 2.2 repeats a cell once per physical group: merge them
                 key = tuple(sorted(c.tolist()))
                 if key in seen:
@@ -82,9 +88,11 @@ def read_msh(path, etype="VPE", default_body="BODY"):
                             cell_groups[seen[key]].append(n)
                     continue
                 seen[key] = len(cells)
-                cells.append(c)
+                nc = CELL_TYPES2.get(block.type, len(c))
+                cells.append(c[:nc])
+                cell_sides.append(c[nc:2 * nc] if block.type in CELL_TYPES2 else None)
                 cell_groups.append(list(g))
-            elif block.type == "line":
+            elif block.type in LINE_TYPES:
                 lines.append(c)
                 line_groups.append(g)
             else:
@@ -101,10 +109,20 @@ def read_msh(path, etype="VPE", default_body="BODY"):
     conn = np.concatenate(cells)
     ptr = np.concatenate([[0], np.cumsum([len(c) for c in cells])]).astype(np.int64)
     m = Mesh(xy, ptr, conn.astype(np.int64), body, [(b, etype) for b in bodies])
-    # counter-clockwise cells
+    second = [sd is not None for sd in cell_sides]
+    if any(second) and not all(second):
+        raise MeshError(f"{path}: mixes first- and second-order cells; give one order")
+    if all(second):
+        m.side_nodes = np.concatenate(cell_sides).astype(np.int64)
+    # counter-clockwise cells; reversed corners c_(n-1) .. c_0 have as side j the
+    # original side n-2-j (mod n)
     area = m.cell_areas()
     for c in np.flatnonzero(area < 0):
         m.conn[m.ptr[c]:m.ptr[c + 1]] = m.conn[m.ptr[c]:m.ptr[c + 1]][::-1].copy()
+        if m.side_nodes is not None:
+            n = m.ptr[c + 1] - m.ptr[c]
+            sd = m.side_nodes[m.ptr[c]:m.ptr[c + 1]].copy()
+            m.side_nodes[m.ptr[c]:m.ptr[c + 1]] = sd[(n - 2 - np.arange(n)) % n]
     # extra element sets: further physical surfaces
     for c, g in enumerate(cell_groups):
         for nm in g[1:]:
@@ -115,10 +133,12 @@ def read_msh(path, etype="VPE", default_body="BODY"):
     groups = {}
     for v, g in zip(lines, line_groups):
         for nm in g:
-            groups.setdefault(nm, []).append(v[:2])
+            groups.setdefault(nm, []).append(v)
     for nm, segs in groups.items():
-        nodes = np.unique(np.asarray(segs).ravel())
-        es = [key[(min(u, w), max(u, w))] for u, w in segs if (min(u, w), max(u, w)) in key]
+        # every node of the curve, middle nodes of 3-node lines included
+        nodes = np.unique(np.concatenate(segs))
+        ends = [(min(sg[0], sg[1]), max(sg[0], sg[1])) for sg in segs]
+        es = [key[k] for k in ends if k in key]
         m.nsets[nm] = nodes
         if es:
             es = np.asarray(es)
@@ -130,10 +150,14 @@ def read_msh(path, etype="VPE", default_body="BODY"):
     # drop nodes used by nothing (gmsh keeps geometry points)
     used = np.zeros(len(m.nodes), bool)
     used[m.conn] = True
+    if m.side_nodes is not None:
+        used[m.side_nodes] = True
     for v in m.nsets.values():
         used[v] = True
     new = np.cumsum(used) - 1
     m.nodes = m.nodes[used]
     m.conn = new[m.conn]
+    if m.side_nodes is not None:
+        m.side_nodes = new[m.side_nodes]
     m.nsets = {k: new[v] for k, v in m.nsets.items()}
     return m

@@ -27,6 +27,10 @@ class Mesh:
     esurfaces: dict = field(default_factory=dict)   # name -> (cells, sides 1-based)
     nsurfaces: dict = field(default_factory=dict)   # name -> node indices
     info: dict = field(default_factory=dict)        # joints, Lloyd history... for reports/tests
+    # second-order meshes: the node of side k of cell i is side_nodes[ptr[i] + k - 1]
+    # (aligned with conn); None for a first-order mesh.  conn keeps the corners only,
+    # so everything that works on the cell polygons is unchanged.
+    side_nodes: np.ndarray | None = None
 
     @property
     def ncell(self):
@@ -63,6 +67,54 @@ class Mesh:
         key = lo.astype(np.int64) * (len(self.nodes) + 1) + hi
         _, inv, cnt = np.unique(key, return_inverse=True, return_counts=True)
         return cnt[inv] == 1
+
+
+def add_side_nodes(m, arcs=(), curved_bodies=()):
+    """Make `m` second order: one new node per side, shared by the two cells on an
+    interior side; sides on the two faces of a joint have different corner nodes, so
+    they get different side nodes (the side nodes split like the vertices).  A side
+    node sits at the middle of its side, except on a boundary side of a cell whose
+    body is in `curved_bodies` (FEM bodies: isoparametric sides may curve) with both
+    corners on one of the circular `arcs` (center, radius): there it is placed on the
+    circle.  The virtual element needs straight sides, so VEM bodies keep the middle.
+    The new nodes follow the old ones; m.side_nodes is set."""
+    a, b, cell, _ = m.edges()
+    n0 = len(m.nodes)
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    key = lo.astype(np.int64) * (n0 + 1) + hi
+    uniq, first, inv, cnt = np.unique(key, return_index=True, return_inverse=True, return_counts=True)
+    mid = 0.5 * (m.nodes[a[first]] + m.nodes[b[first]])
+    if len(arcs) and len(curved_bodies):
+        boundary = cnt == 1
+        curved = np.isin(m.cell_body[cell[first]], list(curved_bodies))
+        size = np.ptp(m.nodes, axis=0).max() if n0 else 1.0
+        for c, r in arcs:
+            c = np.asarray(c, float)
+            on = boundary & curved
+            da = np.abs(np.hypot(*(m.nodes[a[first]] - c).T) - r)
+            db = np.abs(np.hypot(*(m.nodes[b[first]] - c).T) - r)
+            on &= (da <= 1e-9 * size) & (db <= 1e-9 * size)
+            v = mid[on] - c
+            mid[on] = c + r * v / np.hypot(*v.T)[:, None]
+    m.nodes = np.vstack([m.nodes, mid])
+    m.side_nodes = (n0 + inv).astype(np.int64)
+    return m
+
+
+def add_side_nodes_to_sets(m):
+    """In a second-order mesh, add to every node set and node surface the side nodes
+    of the sides whose two corners it holds (the sets are made from the corners)."""
+    if m.side_nodes is None:
+        return m
+    a, b, _, _ = m.edges()
+    for sets in (m.nsets, m.nsurfaces):
+        for name, nodes in sets.items():
+            nodes = np.asarray(nodes, dtype=np.int64)
+            inset = np.zeros(len(m.nodes), bool)
+            inset[nodes] = True
+            extra = np.unique(m.side_nodes[inset[a] & inset[b]])
+            sets[name] = np.union1d(nodes, extra)
+    return m
 
 
 def concatenate(meshes):

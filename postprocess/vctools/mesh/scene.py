@@ -10,14 +10,14 @@ import numpy as np
 from .deck import element_type, write_deck
 from .errors import MeshError
 from .geometry import as_points, check_simple_polygon, diameter
-from .mesh import concatenate
+from .mesh import add_side_nodes, add_side_nodes_to_sets, concatenate
 from .polymesh import Joint, VBody, voronoi_group
 from .quality import report_lines
 from .select import add_contact, add_selection
 from .sizing import Grading
 from . import structured
 
-MESH_KEYS = {"seed", "lloyd", "formulation", "plane", "title", "tile"}
+MESH_KEYS = {"seed", "lloyd", "formulation", "plane", "title", "tile", "order"}
 BODY_KEYS = {"name", "polygon", "rectangle", "half_disc", "cantilever", "mesher", "cells", "divisions",
              "grading", "group", "formulation", "plane", "seed"}
 
@@ -103,6 +103,7 @@ def build(scene, seed=None, verbose=False, processes=None):
     groups = {}
     meshes = []
     order = []
+    arcs = []     # (center, radius) of the circular boundaries, for second-order FEM sides
     for k, b in enumerate(bodies):
         name = b.get("name")
         if not name:
@@ -150,6 +151,7 @@ def build(scene, seed=None, verbose=False, processes=None):
                                      gr.get("point"), float(gr.get("ratio", 1.0)))
         elif shape == "half_disc":
             hd = b["half_disc"]
+            arcs.append((hd.get("center", [0, 0]), float(hd["radius"])))
             m = structured.half_disc(name, hd.get("center", [0, 0]), hd["radius"], b.get("divisions", [4, 4, 4]),
                                      mesher, et, float(gr.get("ratio", 1.0)), float(gr.get("radial_ratio", 1.0)),
                                      float(hd.get("core", 0.5)))
@@ -202,12 +204,22 @@ def build(scene, seed=None, verbose=False, processes=None):
             if len(big) and big.max() > 4:
                 raise MeshError(f"body {bname!r}: FEM elements are triangles and quads; its cells have up to "
                                 f"{big.max()} nodes (use formulation = 'vem')")
+    elem_order = opts.get("order", 1)
+    if elem_order not in (1, 2):
+        raise MeshError(f"[mesh]: order must be 1 or 2, got {elem_order!r}")
+    if elem_order == 2:
+        if scene.get("contact"):
+            raise MeshError("[mesh]: order = 2 with [[contact]]: contact on second-order sides is not "
+                            "supported by vemcontact")
+        curved = [k for k, (_, et) in enumerate(m.bodies) if isinstance(et, FemType)]
+        add_side_nodes(m, arcs, curved)
     size = diameter(m.nodes)
     tol = 1e-8 * size
     for k, s in enumerate(scene.get("selection", [])):
         add_selection(m, s.get("name") or f"SEL{k + 1}", {kk: v for kk, v in s.items() if kk != "name"}, tol)
     for k, c in enumerate(scene.get("contact", [])):
         add_contact(m, c.get("name") or f"CONTACT{k + 1}", c, tol)
+    add_side_nodes_to_sets(m)
     m.info["title"] = opts.get("title", "")
     m.info["seed"] = seed
     return m

@@ -7,7 +7,8 @@ out/paper), draws the figures into DIR/figures and writes DIR/paper-reproduction
 (DIR default: docs/) with each table and figure regenerated, the paper's numbers
 beside ours and, where they differ, by how much and why:
 
-  example 1  two-element cantilever, 2d/b = 0, 0.5, ..., 4, VEM and FEM (Fig. 4)
+  example 1  two-element cantilever, 2d/b = 0, 0.5, ..., 4, VEM and FEM, first
+             and second order (k = 2 VEM, 8-node quad) (Fig. 4)
   example 2  Hertz contact, 389/600/1155 elements, VEM and FEM (Figs. 6-8), and
              the 600-element VEM mesh with K = 1e5, 1e4, 1e3 (Table 1); each mesh
              also with HARD contact, NODE TO SURFACE and (VEM) SURFACE TO SURFACE
@@ -109,6 +110,7 @@ def cantilever_deck(db: float, form: str) -> str:
     E = 1000, nu = 0, clamped at x = 0, end moment M = 16 as the couple +-M/b = +-2
     on the tip nodes (bottom in tension, as inputs/example1_cantilever.inp)."""
     mesh = os.path.join(MESHES, f"ex1_cantilever_2db_{db:.1f}_{form}.inp")
+    formulation = form.rstrip("2").upper()      # vem2 / fem2: the second-order meshes
     if not os.path.exists(mesh):
         raise ResultError(f"{mesh}: no such file (python -m vctools.mesh paper writes it)")
     nodes = _mesh_nodes(mesh)
@@ -123,7 +125,7 @@ Example 1: cantilever with end moment, two quads, 2d/b = {db:.1f}, {form.upper()
 *MATERIAL, NAME=UNIT
 *ELASTIC
 1000.0, 0.0
-*SOLID SECTION, ELSET=BEAM, MATERIAL=UNIT, FORMULATION={form.upper()}
+*SOLID SECTION, ELSET=BEAM, MATERIAL=UNIT, FORMULATION={formulation}
 1.0
 *BOUNDARY
 CLAMP, 1
@@ -226,7 +228,7 @@ def write_jobs(plan: Plan, work: str) -> None:
         plan.jobs[key] = Job(key, deck, os.path.join(work, key))
 
     for db in plan.distortions:
-        for form in ("vem", "fem"):
+        for form in ("vem", "fem", "vem2", "fem2"):
             add(f"ex1_{db:.1f}_{form}", os.path.join(decks, f"ex1_cantilever_2db_{db:.1f}_{form}.inp"),
                 cantilever_deck(db, form))
     for n in plan.hertz:

@@ -244,7 +244,7 @@ class RunInfo:
     coordinates: np.ndarray        # (nnode, 2)
     node_ids: np.ndarray
     nelem: int
-    formulation: str               # "VEM", "FEM" or "VEM+FEM"
+    formulation: str               # "VEM", "FEM", "VEM+FEM"; second order: "VEM k=2", "FEM Q8", "FEM T6"
     steps: list                    # step keys ("0001", ...)
     displacements: dict            # step key -> (nnode, 2)
 
@@ -273,16 +273,23 @@ def read_h5(path: str) -> RunInfo:
         with h5py.File(f, "r") as h:
             if h.attrs.get("format", b"") not in (b"vemcontact-results", "vemcontact-results"):
                 raise ResultError(f"{f}: not a vemcontact HDF5 result (no format attribute)")
+            if int(np.asarray(h.attrs.get("complete", 1)).reshape(-1)[0]) != 1:
+                raise ResultError(f"{f}: incomplete results: the run that wrote it stopped with an error "
+                                  "(root attribute complete = 0)")
             xy = h["mesh/coordinates"][()]
             ids = h["mesh/node_ids"][()]
             form = h["mesh/element_formulation"][()]
+            etype = h["mesh/element_type"][()] if "mesh/element_type" in h else np.ones_like(form)
             keys = sorted(h["steps"]) if "steps" in h else []
             disp = {k: h["steps"][k]["U"][()] for k in keys if "U" in h["steps"][k]}
     except ResultError:
         raise
     except (OSError, KeyError) as exc:
         raise ResultError(f"{f}: cannot be read as a vemcontact HDF5 result ({' '.join(str(exc).split())})") from None
-    kinds = sorted({"VEM" if v == 1 else "FEM" for v in np.unique(form)})
+    # second-order elements (element_type 4, 5, 6: docs/output-format.md) are named apart
+    names = {(1, 4): "VEM k=2", (2, 4): "FEM", (2, 5): "FEM Q8", (2, 6): "FEM T6", (1, 5): "VEM k=2",
+             (1, 6): "VEM k=2"}
+    kinds = sorted({names.get((int(f_), int(t_)), "VEM" if f_ == 1 else "FEM") for f_, t_ in zip(form, etype)})
     return RunInfo(path=f, job=os.path.splitext(os.path.basename(f))[0], coordinates=xy, node_ids=ids,
                    nelem=int(len(form)), formulation="+".join(kinds) if kinds else "none",
                    steps=list(disp), displacements=disp)

@@ -5,7 +5,8 @@
                          [--clip P] [--exclude X,Y[,R] ...] [-o DIR] [--format png|pdf]
 
 RESULT is a .vtu file or a .pvd collection (default: its last step).  Fields:
-MISES, S1, S3, U (magnitude), U:x, U:y, S:xx, S:yy, S:zz, S:xy; prefix cell: for
+MISES, S1, S3, U (magnitude), U:x, U:y, S:xx, S:yy, S:zz, S:xy, E:xx, E:yy, E:zz,
+E:xy (tensor shear, gamma/2), RF:x, RF:y; prefix cell: for
 element values (cell:S:yy).  One picture per field, named JOB_FIELD.png, titled
 with the field and the step (its number and, from JOB.h5, its name); the axes
 carry the length unit, the colour bar the field's unit.  --line overlays (given
@@ -14,6 +15,13 @@ range can leave out a singular point (--exclude: values within R of (X, Y); R
 defaults to 2 % of the model's size) and clip at a percentile (--clip 99: from
 the 1st to the 99th percentile); the bar then says so and shows arrows for the
 values beyond it.
+When the displacements are zero (a geostatic step) the default is S1, S3, MISES,
+S:yy; a field that is the same everywhere is drawn in one colour with its value in
+the title, without a colour bar.
+A deck with output requests writes only the fields they select: the default
+pictures are then those of the step's fields, with a note naming the ones left out,
+and a field (or --deformed, which needs U) the step lacks is an error naming the
+request to add.
 """
 from __future__ import annotations
 
@@ -21,7 +29,9 @@ import argparse
 import os
 import sys
 
-from .results import ResultError, contact_file, read_contact_points, read_vtu, step_files, step_label
+import numpy as np
+
+from .results import ResultError, check_complete, contact_file, read_contact_points, read_vtu, step_files, step_label
 from .contour import plot
 
 
@@ -44,15 +54,22 @@ def main(argv=None) -> int:
                    help="values within R of (X, Y) do not set the colour range (repeatable), e.g. a joint tip")
     p.add_argument("-o", "--output", default=None, help="folder for the pictures (default: the result's)")
     p.add_argument("--format", choices=["png", "pdf"], default="png")
+    p.add_argument("--incomplete", action="store_true",
+                   help="plot the steps of a run that did not finish (refused by default)")
     a = p.parse_args(argv)
     try:
         files = step_files(a.result)
+        if not a.incomplete:
+            check_complete(a.result)
         if a.step < 0 or a.step > len(files):
             raise ResultError(f"{a.result}: has {len(files)} steps, no step {a.step}")
         vtu = files[a.step - 1] if a.step else files[-1]
         res = read_vtu(vtu)
         deformed = None
         if a.deformed is not None:
+            if "U" not in res.point_data:
+                raise ResultError(f"{vtu}: --deformed needs U, which the deck's output requests do not select "
+                                  f"(add U under *NODE FILE)")
             deformed = "auto" if a.deformed == "auto" else float(a.deformed)
         cfile = contact_file(a.result, vtu)
         contact = read_contact_points(cfile) if cfile and os.path.exists(cfile) else None
@@ -79,7 +96,26 @@ def main(argv=None) -> int:
                 raise ResultError(f"--exclude {text}: expected X,Y or X,Y,R with R > 0")
             exclude.append((v[0], v[1], v[2] if len(v) == 3 else 0.02 * size))
         step = step_label(vtu, a.step or len(files))
-        for f in a.field or ["U:x", "U:y", "S1", "S3", "MISES"]:
+        fields = a.field
+        if not fields:
+            fields = ["U:x", "U:y", "S1", "S3", "MISES"]
+            if "U" in res.point_data and not np.asarray(res.point_data["U"]).any():
+                # a geostatic step reports zero displacements by construction: its
+                # picture is the stress state
+                fields = ["S1", "S3", "MISES", "S:yy"]
+                print(f"vc-plot: note: {vtu}: displacements are zero (a geostatic step): drawing stresses only",
+                      file=sys.stderr)
+            # a deck with output requests writes only the fields they select
+            have = [f for f in fields if f.split(":")[0] in res.point_data]
+            if len(have) < len(fields):
+                left = list(dict.fromkeys(f.split(":")[0] for f in fields if f not in have))
+                print(f"vc-plot: note: {vtu}: no {', '.join(left)} (not selected by the deck's output requests)",
+                      file=sys.stderr)
+            fields = have or [f for f in ("RF:x", "RF:y", "E:xx", "E:yy") if f.split(":")[0] in res.point_data]
+            if not fields:
+                raise ResultError(f"{vtu}: no result field to draw: the deck's output requests select none "
+                                  f"(*NODE FILE U, *EL FILE S)")
+        for f in fields:
             out = os.path.join(outdir, f"{job}_{f.replace(':', '_')}.{a.format}")
             units = a.units.split(",")
             unit = units[0] if f.removeprefix("cell:").startswith("U") or len(units) == 1 else units[1]

@@ -108,13 +108,19 @@ def plot(res: PolyResult, spec: str, out: str, deformed: float | str | None = No
     values, where, label = field_values(res, spec)
     positions = res.points if where == "point" else cell_centroids(res)
     vmin, vmax, range_note = colour_range(values, positions, clip, exclude)
+    # a field without variation (U of a geostatic step, zero by construction) gets
+    # one flat colour and its value in the title, not a colour bar over nothing
+    flat = len(values) > 0 and float(np.ptp(values)) == 0.0
     # figure shaped after the domain (plus room for the colour bar)
     ext = np.ptp(xy, axis=0)
     aspect = float(ext[0] / ext[1]) if ext[1] > 0 else 1.0
     fig, ax = plt.subplots(figsize=(min(11.0, max(4.5, 5.0 * aspect + 2.2)) + (0.6 if range_note else 0.0), 5.5),
                            dpi=150)
     verts = [xy[p] for p in res.polygons]
-    if where == "point":
+    if flat:
+        m = None
+        ax.add_collection(PolyCollection(verts, facecolors="0.85", edgecolors="k", linewidths=0.15))
+    elif where == "point":
         tri = Triangulation(xy[:, 0], xy[:, 1], fan_triangles(res.polygons))
         m = ax.tripcolor(tri, values, shading="gouraud", cmap="viridis", vmin=vmin, vmax=vmax)
         ax.add_collection(PolyCollection(verts, facecolors="none", edgecolors="k", linewidths=0.15, alpha=0.5))
@@ -144,14 +150,17 @@ def plot(res: PolyResult, spec: str, out: str, deformed: float | str | None = No
     lu = f" [{length_unit}]" if length_unit else ""
     ax.set_xlabel(f"x{lu}")
     ax.set_ylabel(f"y{lu}")
-    clipped = bool(range_note) and (np.nanmin(values) < vmin or np.nanmax(values) > vmax)
-    cb = fig.colorbar(m, ax=ax, shrink=0.85, extend="both" if clipped else "neither")
-    bar = f"{label} [{units}]" if units else label
-    if range_note:
-        import textwrap
-        bar += "\n" + textwrap.fill(range_note, 48)
-    cb.set_label(bar, fontsize=8 if range_note else None)
+    if m is not None:
+        clipped = bool(range_note) and (np.nanmin(values) < vmin or np.nanmax(values) > vmax)
+        cb = fig.colorbar(m, ax=ax, shrink=0.85, extend="both" if clipped else "neither")
+        bar = f"{label} [{units}]" if units else label
+        if range_note:
+            import textwrap
+            bar += "\n" + textwrap.fill(range_note, 48)
+        cb.set_label(bar, fontsize=8 if range_note else None)
     t = title or f"{label}"
+    if flat:
+        t += f" = {values[0]:.6g}{' ' + units if units else ''} everywhere"
     if step:
         t += f", {step}"
     if deformed is not None:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import contextlib
 import io
 import os
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 
@@ -25,6 +26,42 @@ class PolyResult:
     point_data: dict              # name -> (npoints,) or (npoints, k)
     cell_data: dict               # name -> (ncells,) or (ncells, k)
     path: str
+
+
+def job_of(path: str) -> str | None:
+    """The job of a vemcontact .pvd (JOB.pvd) or .vtu (JOB_NNNN.vtu, JOB_contact_NNNN.vtu)."""
+    base = os.path.basename(path)
+    if base.endswith(".pvd"):
+        return base[:-4]
+    m = re.fullmatch(r"(.+?)(_contact)?_(\d+)\.vtu", base)
+    return m.group(1) if m else None
+
+
+def check_complete(path: str) -> None:
+    """Refuse the results of a job whose run did not finish (docs/output-format.md):
+    its JOB.lock exists (written by a vemcontact that marks completion) and its
+    JOB.h5 is missing or has the root attribute complete = 0."""
+    job = job_of(path)
+    if job is None:
+        return
+    folder = os.path.dirname(path)
+    if not os.path.exists(os.path.join(folder, job + ".lock")):
+        return
+    h5 = os.path.join(folder, job + ".h5")
+    hint = "see its log and rerun, or give --incomplete to plot the steps written"
+    if not os.path.exists(h5):
+        raise ResultError(f"{path}: incomplete results: {h5} is missing (the run of {job} is still going, "
+                          f"was killed or could not write it); {hint}")
+    import h5py
+
+    try:
+        with h5py.File(h5, "r") as f:
+            complete = int(np.asarray(f.attrs.get("complete", 1)).reshape(-1)[0])
+    except (OSError, KeyError, ValueError) as exc:
+        raise ResultError(f"{path}: {h5} cannot be read ({' '.join(str(exc).split())}); {hint}") from None
+    if complete != 1:
+        raise ResultError(f"{path}: incomplete results: the run of {job} stopped with an error "
+                          f"({h5} has complete = 0); {hint}")
 
 
 def step_files(path: str) -> list[str]:
@@ -101,13 +138,21 @@ def read_vtu(path: str) -> PolyResult:
         cell_data[name] = np.concatenate([np.asarray(a) for a in arrays])
     # meshio splits polygons into blocks by vertex count; cells keep the file's
     # order within each block, so reorder by ELEMENT_ID position when present
-    if "ELEMENT_ID" not in cell_data or "U" not in mesh.point_data:
-        raise ResultError(f"{path}: lacks ELEMENT_ID/U: not written by vemcontact")
+    # the labels are always written; the result fields only when the deck's output
+    # requests select them (docs/output-format.md)
+    if "ELEMENT_ID" not in cell_data or "NODE_ID" not in mesh.point_data:
+        raise ResultError(f"{path}: lacks ELEMENT_ID/NODE_ID: not written by vemcontact")
     return PolyResult(points=np.asarray(mesh.points)[:, :2], polygons=polygons,
                       point_data=dict(mesh.point_data), cell_data=cell_data, path=path)
 
 
-COMPONENTS = {"U": ["x", "y", "z"], "S": ["xx", "yy", "zz", "xy"]}
+# the .vtu's tensors have 9 components, row by row (docs/output-format.md)
+TENSOR = ["xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"]
+COMPONENTS = {"U": ["x", "y", "z"], "RF": ["x", "y", "z"], "S": TENSOR, "E": TENSOR}
+# the output request that writes a field (a deck with requests writes only what they select)
+REQUEST = {"U": "U under *NODE FILE", "RF": "RF under *NODE FILE", "S": "S under *EL FILE",
+           "S1": "S under *EL FILE", "S3": "S under *EL FILE", "MISES": "S under *EL FILE",
+           "E": "E under *EL FILE"}
 
 
 def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
@@ -121,7 +166,8 @@ def field_values(res: PolyResult, spec: str) -> tuple[np.ndarray, str, str]:
     data = res.point_data if where == "point" else res.cell_data
     if name not in data:
         have = ", ".join(sorted(data))
-        raise ResultError(f"{res.path}: no {where} field {name} (it has {have})")
+        hint = f"; the deck's output requests do not select it (add {REQUEST[name]})" if name in REQUEST else ""
+        raise ResultError(f"{res.path}: no {where} field {name} (it has {have}{hint})")
     v = np.asarray(data[name], dtype=float)
     if v.ndim == 1:
         if comp:

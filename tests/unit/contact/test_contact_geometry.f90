@@ -7,11 +7,13 @@ program test_contact_geometry
    use vemcontact_testing, only: checker_t
    use vemcontact_contact_geometry, only: project_point_segment, relative_map, contact_force, &
                                           contact_stiffness, contact_energy, contact_pressure, &
-                                          contact_geometric_stiffness, contact_slip, seg_ok, seg_degenerate
+                                          segment_normal, contact_slip, seg_ok, seg_degenerate, &
+                                          sliding_tangent, projection_gradient
    implicit none
    type(checker_t) :: t
    real(wp) :: xa(2), xb(2), tt(2), nn(2), xs(2), xi, g, n(2), d, l
-   real(wp) :: a(2, 6), u(6), x6(6), kc(6, 6), kfd(6, 6), f(6), fp(6), fm(6), du(6), dx, kg(6, 6)
+   real(wp) :: a(2, 6), u(6), x6(6), kc(6, 6), kfd(6, 6), f(6), fp(6), fm(6), du(6), dx
+   real(wp) :: n0(2), js(6, 6), jt(6, 6)
    real(wp) :: k, de, diff, ratio, gtarget, c(2), w, sc, xi1, g1, n1(2), d1
    integer :: st, j, m
    character(len=32) :: lab
@@ -28,6 +30,7 @@ program test_contact_geometry
    call t%close(g, 2.0_wp, 1.0e-14_wp, 'gap inside')
    call t%close(d, 2.0_wp, 1.0e-14_wp, 'distance inside = |g|')
    call t%close(n(1), 0.8_wp, 1.0e-15_wp, 'normal x')
+   call t%close(maxval(abs(segment_normal(xa, xb) - nn)), 0.0_wp, 1.0e-15_wp, 'segment_normal')
    call t%close(n(2), -0.6_wp, 1.0e-15_wp, 'normal y')
    call project_point_segment(xa - 0.4_wp*5.0_wp*tt + 1.5_wp*nn, xa, xb, xi, g, n, d, st)
    call t%close(xi, -0.4_wp, 1.0e-14_wp, 'xi < 0')
@@ -163,33 +166,7 @@ program test_contact_geometry
          '  / (|g|/l) = ', ratio
       call t%check(ratio <= 2.0_wp, 'K_c vs FD with projection recomputed within 2|g|/l,'//trim(lab))
       call t%check(ratio >= 0.5_wp, 'the neglected term is really O(|g|/l) (not zero),'//trim(lab))
-      ! with the geometric part the tangent is exact: what is left is the central
-      ! difference error, O(dx**2) relative to the O(|g|/l) term (dx = 1e-3 |g|,
-      ! so ~1e-6 |g|/l), plus the round-off of the recomputed gap, eps |x| / dx
-      ! relative (2e-7 at |g|/l = 1e-6; observed 7e-11, 2e-10, 4e-8)
-      kg = contact_geometric_stiffness(xi, n, l, k, g)
-      call t%close(maxval(abs(kg - transpose(kg))), 0.0_wp, 0.0_wp, 'geometric stiffness symmetric'//trim(lab))
-      diff = maxval(abs(kfd - kc - kg))/maxval(abs(kc))
-      write (*, '(a,es10.3)') '   with the geometric stiffness:        ', diff
-      call t%check(diff <= 1.0e-3_wp*abs(g)/l + 4.0_wp*epsilon(1.0_wp)*maxval(abs(x6))/dx, &
-                   'K_c + K_geo = FD with projection recomputed,'//trim(lab))
    end do
-   ! off the segment (xi = 1.4, beyond b: a node kept on its segment by the pairing
-   ! hysteresis), the geometric part is the same formula
-   xs = xa + 1.4_wp*(xb - xa) - 1.0e-3_wp*nn
-   x6 = [xs, xa, xb]
-   call project_point_segment(xs, xa, xb, xi, g, n, d, st)
-   dx = 1.0e-3_wp*abs(g)
-   do j = 1, 6
-      du = 0.0_wp
-      du(j) = dx
-      kfd(:, j) = (full_force(x6 + du) - full_force(x6 - du))/(2.0_wp*dx)
-   end do
-   kc = contact_stiffness(xi, n, k, g)
-   kg = contact_geometric_stiffness(xi, n, l, k, g)
-   call t%check(maxval(abs(kfd - kc - kg))/maxval(abs(kc)) <= 1.0e-8_wp, 'K_c + K_geo = FD at xi = 1.4')
-   call t%close(maxval(abs(contact_geometric_stiffness(xi, n, l, k, 0.1_wp))), 0.0_wp, 0.0_wp, &
-                'no geometric stiffness when open')
 
    ! energy: f_c is the gradient of 1/2 k <-g>^2 with the projection recomputed
    ! (dg = n.(du_s - du_xi) exactly); central difference error O(|du|^2/(|g| l)) + round-off
@@ -218,8 +195,56 @@ program test_contact_geometry
       call t%close(d/sc, d1, 1.0e-14_wp, trim(lab)//': distance / scale')
       call t%close(maxval(abs(n - n1)), 0.0_wp, 0.0_wp, trim(lab)//': normal', atol=1.0e-15_wp)
    end do
+
+   ! ---- finite sliding with the reference normal: f = -N A(xi)^T n0 with N = -k g,
+   ! g = n0.(x_s - x_xi) and xi the closest point of the current segment.  Its
+   ! Jacobian, with xi recomputed, is contact_stiffness + sliding_tangent: checked by
+   ! central differences on a segment turned (c = n0.t /= 0) and a slave off it
+   ! (d /= 0).  The force is smooth here: the difference error is O(dx**2) relative to
+   ! the second derivatives (about k/l**2 * dx**2 ~ 1e-12 of k) plus the round-off
+   ! eps |f| / dx ~ 1e-10 of k: 1e-7 of max|J| is ample, and far below the sliding
+   ! part itself (asserted to be more than 1e-3 of max|J|, so that it is tested)
+   n0 = [0.0_wp, 1.0_wp]                   ! reference segment along x
+   xa = [0.1_wp, 0.02_wp]                  ! current ends: turned by 0.1 rad, moved
+   xb = xa + 2.0_wp*[cos(0.1_wp), sin(0.1_wp)]
+   xs = xa + 0.7_wp*(xb - xa) + 0.05_wp*[-sin(0.1_wp), cos(0.1_wp)] - [0.0_wp, 0.2_wp]
+   x6 = [xs, xa, xb]
+   k = 3.0e5_wp
+   call project_point_segment(xs, xa, xb, xi, g, n, d, st)
+   g = dot_product(n0, xs - ((1.0_wp - xi)*xa + xi*xb))
+   call t%check(g < 0.0_wp, 'sliding test point penetrates')
+   ! c = n0.t: the reference segment is along x, so n0.(u_b - u_a) = n0.(x_b - x_a)
+   js = sliding_tangent(xi, n0, k, -k*g, dot_product(n0, xb - xa), projection_gradient(xi, xs, xa, xb))
+   jt = contact_stiffness(xi, n0, k, -1.0_wp) + js
+   dx = 1.0e-6_wp
+   do j = 1, 6
+      du = 0.0_wp
+      du(j) = dx
+      kfd(:, j) = (sliding_force(x6 + du) - sliding_force(x6 - du))/(2.0_wp*dx)
+   end do
+   diff = maxval(abs(kfd - jt))/maxval(abs(jt))
+   write (*, '(a,es10.3,a,es10.3)') 'sliding tangent vs FD: ', diff, '  sliding part / tangent: ', &
+      maxval(abs(js))/maxval(abs(jt))
+   call t%check(diff <= 1.0e-7_wp, 'contact_stiffness + sliding_tangent = FD with xi recomputed')
+   call t%check(maxval(abs(js))/maxval(abs(jt)) > 1.0e-3_wp, 'the sliding part is not negligible here')
+   ! without c and d (a master that keeps its direction, the slave on it) only the
+   ! shift of the force between a and b remains: N B w^T
+   js = sliding_tangent(0.5_wp, n0, k, 2.0_wp, 0.0_wp, projection_gradient(0.5_wp, [1.0_wp, 0.0_wp], &
+                        [0.0_wp, 0.0_wp], [2.0_wp, 0.0_wp]))
+   call t%close(js(4, 1), -2.0_wp*0.5_wp, 1.0e-15_wp, 'N B w^T: force moves to b as the slave slides')
    call t%finish()
 contains
+   !> The contact force f_c = -N A(xi)^T n0 (K u + f_c = f_ext) of the configuration
+   !> x (slave, a, b), xi re-projected, N = -k g
+   function sliding_force(x) result(ff)
+      real(wp), intent(in) :: x(6)
+      real(wp) :: ff(6), xi1, g1, n1(2), d1
+      integer :: s1
+      call project_point_segment(x(1:2), x(3:4), x(5:6), xi1, g1, n1, d1, s1)
+      g1 = dot_product(n0, x(1:2) - ((1.0_wp - xi1)*x(3:4) + xi1*x(5:6)))
+      ff = k*g1*matmul(n0, relative_map(xi1))
+   end function sliding_force
+
    function frozen_force(x) result(ff)
       real(wp), intent(in) :: x(6)
       real(wp) :: ff(6), gg

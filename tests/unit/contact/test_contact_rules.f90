@@ -1,15 +1,14 @@
 !> Each rule of the contact iteration alone (vemcontact_contact_rules): the line
-!> search against a hand-solved piecewise-quadratic energy, the hold, the count of
-!> Newton rises, the cycle test, the conditioning verdicts, the residual norm and
+!> search against a hand-solved piecewise-quadratic energy, the hold, the cycle
+!> test, the conditioning verdicts, the residual norm and
 !> the reuse key of the factorization.
 program test_contact_rules
    use vemcontact_kinds, only: wp, ip
    use vemcontact_testing, only: checker_t
    use vemcontact_contact_active_set, only: contact_state_t
-   use vemcontact_contact_rules, only: line_search_step, needs_line_search, hold_nodes, newton_rises, &
+   use vemcontact_contact_rules, only: line_search_step, needs_line_search, hold_nodes, &
                                        is_cycle, conditioning_verdict, residual_norm, matrix_key_t, key_of, &
-                                       same_key, cond_ok, cond_warn, cond_stop, cond_stop_penalty, armijo, &
-                                       max_rises
+                                       same_key, cond_ok, cond_warn, cond_stop, cond_stop_penalty, armijo
    implicit none
    type(checker_t) :: t
    real(wp) :: step, tstar, tarm, disc
@@ -17,7 +16,7 @@ program test_contact_rules
    real(wp) :: gaps(2, 0:2)
    type(contact_state_t) :: c
    type(matrix_key_t) :: key
-   integer :: n, k
+
 
    ! ---- line search: E(t) = a t + b t^2/2 + k/2 (<-(g0 + t h)>^2 - <-g0>^2)
    ! no contact along the step (h = 0): the solve's own minimum, t = 1
@@ -47,15 +46,6 @@ program test_contact_rules
                                [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp], [.false., .true., .false., .false.]) .eqv. &
                     [.true., .false., .false., .false.]), 'hold only nodes opened by the re-pairing, once')
 
-   ! ---- Newton rises
-   n = 0
-   do k = 1, max_rises
-      n = newton_rises(n, .true., 2.0_wp, 1.0_wp)
-   end do
-   call t%equal(n, max_rises, 'three rising Newton solves in a row')
-   call t%equal(newton_rises(2, .true., 0.5_wp, 1.0_wp), 0, 'a falling residual resets the count')
-   call t%equal(newton_rises(2, .false., 2.0_wp, 1.0_wp), 0, 'a frozen-pairing solve resets the count')
-
    ! ---- cycle: the same active set and gaps as an earlier iteration
    hist(:, 0) = [.true., .false.]
    hist(:, 1) = [.true., .true.]
@@ -83,13 +73,12 @@ program test_contact_rules
    call t%close(residual_norm([0.0_wp], [0.0_wp], [0.0_wp], [0.0_wp], 1.0_wp, 0.0_wp), 0.0_wp, 0.0_wp, &
                 'nothing loaded: zero')
 
-   ! ---- reuse key: same active set and pairing, no geometric term
+   ! ---- reuse key: same active set, pairing and springs
    c%n = 2
    c%active = [.true., .false.]
    c%iseg = [1_ip, 0_ip]
    c%xi = [0.25_wp, 0.0_wp]
    c%normal = reshape([0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp], [2, 2])
-   c%geo_weight = [0.0_wp, 0.0_wp]
    c%k = [1.0_wp, 1.0_wp]
    call t%check(.not. same_key(key, c), 'no factor yet: no reuse')
    key = key_of(c)
@@ -104,8 +93,5 @@ program test_contact_rules
    c%active(2) = .false.
    c%k(1) = 100.0_wp
    call t%check(.not. same_key(key, c), 'a stiffer spring (HARD after its search): refactorize')
-   c%k(1) = 1.0_wp
-   c%geo_weight(1) = 1.0_wp
-   call t%check(.not. same_key(key, c), 'a geometric term (depends on the gaps): refactorize')
    call t%finish()
 end program test_contact_rules

@@ -41,6 +41,12 @@ def main(path):
                              ("element_type", [1, 2, 3]), ("element_formulation", [1, 2, 2])]:
             d = m[name]
             expect(d.dtype == np.int32 and d.shape == (nelem,) and d[...].tolist() == values, name)
+        for name, values in [("element_set", [3, 1, 0]), ("element_part", [1, 1, 2])]:
+            d = m[name]
+            expect(d.dtype == np.int32 and d.shape == (nelem,) and d[...].tolist() == values, name)
+        expect([s.decode() for s in m["element_set_names"][...]] == ["PLATE", "A_LONGER_SET_NAME", "Q"],
+               "element_set_names strings")
+        expect([s.decode() for s in m["material_names"][...]] == ["ROCK", "CONCRETE"], "material_names strings")
         steps = f["steps"]
         expect(sorted(steps.keys()) == ["0001", "0002"], "step groups 0001, 0002")
         s1 = steps["0001"]
@@ -58,6 +64,16 @@ def main(path):
                "U row = node (x, y)")
         expect(np.allclose(s1["S_node"][8], [9 / 7, -81 / 11, 1 / 11, np.exp(9.0)], rtol=1e-15, atol=0),
                "S_node row = node (xx, yy, zz, xy)")
+        # strains and reactions (write_results): E_* = S_* scaled, RF = 3 U
+        expect(s1["E_element"].shape == (nelem, 4) and s1["E_node"].shape == (nnode, 4), "E shapes")
+        expect(np.array_equal(s1["E_element"][...], 0.5 * s1["S_element"][...]), "E_element values")
+        expect(np.array_equal(s1["E_node"][...], 0.25 * s1["S_node"][...]), "E_node values")
+        expect(s1["RF"].shape == (nnode, 2) and np.array_equal(s1["RF"][...], 3 * s1["U"][...]), "RF values")
+        expect(s1["RF_total"].shape == (2,) and np.allclose(s1["RF_total"][...], s1["RF"][...].sum(axis=0),
+                                                            rtol=1e-14), "RF_total = sum of RF")
+        expect([s.decode() for s in s1["RF_sets/names"][...]] == ["BASE", "SIDE"], "RF_sets names")
+        expect(s1["RF_sets/RF"][...].tolist() == [[1.0, 2.0], [-3.0, 0.5]], "RF_sets RF (nsets, 2)")
+        expect("E_element" not in steps["0002"], "step 2 without write_results has no E")
     print("all checks passed")
 
 

@@ -1,7 +1,8 @@
 !> HDF5 results file: written with h5_writer_t, read back with the HDF5
 !> Fortran API.  Checks the root attributes, the mesh datasets (shapes in
 !> Fortran order, 0-based connectivity and offsets), two steps' attributes and
-!> that U, S_element, S_node come back bit-identical; and the errors for an
+!> that U, S_element, S_node come back bit-identical; the labels and the
+!> strain/reaction datasets (checked by check_hdf5.py); and the errors for an
 !> unwritable path and for writing before opening.  The file goes next to the
 !> test executable (build tree); check_hdf5.py then reads it with h5py
 !> (CTest test test_output_hdf5_h5py) to confirm the layout as Python sees it.
@@ -15,7 +16,7 @@ program test_output_hdf5
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, err_io, err_internal
    use vemcontact_testing, only: checker_t
-   use vemcontact_model, only: model_t, etype_polygon, etype_quad4, etype_tri3, form_vem, &
+   use vemcontact_model, only: model_t, string_t, etype_polygon, etype_quad4, etype_tri3, form_vem, &
                                form_fem, plane_strain
    use vemcontact_output_hdf5, only: h5_writer_t
    implicit none
@@ -24,6 +25,7 @@ program test_output_hdf5
    type(h5_writer_t) :: w, w2
    type(error_t), allocatable :: error
    real(wp), allocatable :: u1(:, :), u2(:, :), s_elem(:, :), s_node(:, :)
+   type(string_t), allocatable :: set_names(:)
    character(len=:), allocatable :: path
    integer(hid_t) :: file
    integer :: hdferr, i
@@ -61,6 +63,25 @@ program test_output_hdf5
    call t%check(.not. allocated(error), 'write_mesh')
    call w%write_step(1, 'LOAD', 1.0_wp, u1, s_elem, s_node, error)
    call t%check(.not. allocated(error), 'write_step 1')
+   ! labels (element sets, materials, parts) and the strains and reactions of step 1
+   allocate (model%elsets(3), model%materials(2))
+   model%elsets(1)%name = 'PLATE'
+   model%elsets(2)%name = 'A_LONGER_SET_NAME'
+   model%elsets(3)%name = 'Q'
+   model%materials(1)%name = 'ROCK'
+   model%materials(2)%name = 'CONCRETE'
+   call w%write_labels(model, [3_ip, 1_ip, 0_ip], [1_ip, 1_ip, 2_ip], error)
+   call t%check(.not. allocated(error), 'write_labels')
+   call w%write_labels(model, [3_ip, 1_ip], [1_ip, 1_ip], error)
+   call t%check(allocated(error), 'write_labels with too few elements fails')
+   allocate (set_names(2))
+   set_names(1)%s = 'BASE'
+   set_names(2)%s = 'SIDE'
+   call w%write_results(1, 0.5_wp*s_elem, 0.25_wp*s_node, 3.0_wp*u1, set_names, &
+                        reshape([1.0_wp, 2.0_wp, -3.0_wp, 0.5_wp], [2, 2]), error)
+   call t%check(.not. allocated(error), 'write_results')
+   call w%write_results(1, s_elem, s_node, u1(:, 1:2), set_names, reshape([1.0_wp, 2.0_wp], [2, 1]), error)
+   call t%check(allocated(error), 'write_results with wrong shapes fails')
    call w%write_step(2, 'UNLOAD step', 0.1_wp, u2, 2.0_wp*s_elem, -s_node, error)
    call t%check(.not. allocated(error), 'write_step 2')
    call w%write_step(2, 'again', 0.2_wp, u2, s_elem, s_node, error)

@@ -2,7 +2,8 @@
 !> (plus a node in no element) with deterministic, non-round field values, and
 !> the values it expects a reader to find as text with 18 significant digits
 !> (enough to read back as the same doubles).  check_vtu.py reads the .vtu
-!> with meshio and compares exactly (CTest test test_output_vtu_meshio).
+!> (zlib-compressed, and raw as test_output_vtu_raw.vtu) with meshio and
+!> compares exactly (CTest test test_output_vtu_meshio).
 !> Files go next to the test executable, i.e. into the build tree.
 !> This program itself checks the atomic write (no .tmp left behind), the
 !> errors for bad shapes and unwritable paths, and the .pvd text.
@@ -13,7 +14,7 @@ program test_output_vtu
    use vemcontact_model, only: model_t, string_t, etype_polygon, etype_quad4, etype_tri3, &
                                form_vem, form_fem, plane_strain
    use vemcontact_post_stress, only: principal_stresses
-   use vemcontact_output_vtu, only: write_vtu
+   use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
    use vemcontact_output_pvd, only: write_pvd, relative_path
    implicit none
    type(checker_t) :: t
@@ -22,6 +23,7 @@ program test_output_vtu
    real(wp), allocatable :: u(:, :), s_elem(:, :), s_node(:, :)
    character(len=:), allocatable :: dir, vtu, rel, text
    type(string_t) :: files(2)
+   type(vtu_extras_t) :: extra
    logical :: exists, ok
    integer :: i
 
@@ -47,6 +49,28 @@ program test_output_vtu
    inquire (file=vtu//'.tmp', exist=exists)
    call t%check(.not. exists, 'no .tmp left behind')
    call write_expected(dir//'test_output_vtu.expected', model, u, s_elem, s_node)
+   ! the same uncompressed (--raw-vtu)
+   call write_vtu(dir//'test_output_vtu_raw.vtu', model, u, s_elem, s_node, error, compress=.false.)
+   call t%check(.not. allocated(error), 'write_vtu (raw) succeeds')
+   ! with the extras: E = S/1000 (xy engineering), RF = 5 U, ELSET, PART, names, time;
+   ! the set names need XML escaping
+   allocate (model%elsets(3), model%materials(2))
+   model%elsets(1)%name = 'PLATE'
+   model%elsets(2)%name = 'A&B<C>'
+   model%elsets(3)%name = 'UNUSED'
+   model%materials(1)%name = 'ROCK'
+   model%materials(2)%name = 'CONCRETE'
+   extra%e_node = s_node/1000.0_wp
+   extra%e_elem = s_elem/1000.0_wp
+   extra%rf = 5.0_wp*u
+   extra%elem_set = [2_ip, 1_ip, 2_ip]
+   extra%elem_part = [1_ip, 1_ip, 2_ip]
+   extra%time = 2.5_wp
+   call write_vtu(dir//'test_output_vtu_extra.vtu', model, u, s_elem, s_node, error, extra=extra)
+   call t%check(.not. allocated(error), 'write_vtu (extras) succeeds')
+   extra%elem_part = [1_ip, 1_ip]
+   call write_vtu(dir//'test_output_vtu_bad.vtu', model, u, s_elem, s_node, error, extra=extra)
+   call t%check(allocated(error), 'write_vtu rejects a short extra array')
 
    ! wrong shape: internal error, nothing written
    call write_vtu(dir//'test_output_vtu_bad.vtu', model, u(:, 1:2), s_elem, s_node, error)

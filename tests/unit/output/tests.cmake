@@ -1,5 +1,6 @@
-# Output checks run with Python: check_vtu.py reads the .vtu that test_output_vtu
-# writes (next to its executable) with meshio and compares every array exactly;
+# Output checks run with Python: check_vtu.py reads the .vtu files that
+# test_output_vtu writes (next to its executable; zlib-compressed and raw) with
+# meshio and compares every array exactly;
 # check_hdf5.py reads test_output_hdf5's file with h5py to confirm the layout
 # (shapes as Python sees them, dtypes, attributes) that docs/output-format.md
 # documents.  They fail when the interpreter or the packages are missing: the
@@ -12,6 +13,8 @@ set(VC_PYTHON "${PROJECT_SOURCE_DIR}/.venv/bin/python" CACHE FILEPATH
 add_test(NAME test_output_vtu_meshio
   COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/check_vtu.py"
           "$<TARGET_FILE_DIR:test_output_vtu>/test_output_vtu.vtu"
+          "$<TARGET_FILE_DIR:test_output_vtu>/test_output_vtu_raw.vtu"
+          "$<TARGET_FILE_DIR:test_output_vtu>/test_output_vtu_extra.vtu"
           "$<TARGET_FILE_DIR:test_output_vtu>/test_output_vtu.expected")
 set_tests_properties(test_output_vtu PROPERTIES FIXTURES_SETUP vc_output_vtu_file)
 set_tests_properties(test_output_vtu_meshio PROPERTIES
