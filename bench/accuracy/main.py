@@ -31,7 +31,7 @@ _TOTAL = re.compile(r"^\s*total\s+([0-9.Ee+-]+)\s*s", re.M)
 _UNK = re.compile(r"unknowns\s+(\d+)")
 _ITERS = re.compile(r"contact converged in (\d+) iterations? \((\d+) numeric factori")
 _ITER_LINE = re.compile(r"^\s+(\d+)\s+\d+\s+\d+\s+[0-9.E+-]+\s", re.M)
-_FALLBACK = "(geometric contact stiffness off for this step"
+_FALLBACK = "(Newton step on the pairing replaced by the frozen-pairing step"
 _INSERTED = re.compile(r"\(SURFACE TO SURFACE\): (\d+) interface nodes inserted")
 
 
@@ -39,7 +39,7 @@ def contact_stats(log):
     """The contact iterations of a log (replaced by the HDF5 records of a run that
     finished, contact_stats_h5): largest count per step (increment), numeric
     factorizations (sum over the steps), fallbacks to the frozen pairing (lines
-    '(geometric contact stiffness off for this step: ...)'), iterations made before a
+    '(Newton step on the pairing replaced by the frozen-pairing step: ...)'), iterations made before a
     failure, interface nodes inserted by SURFACE TO SURFACE."""
     its = [(int(a), int(b)) for a, b in _ITERS.findall(log)]
     lines = [int(k) for k in _ITER_LINE.findall(log)]

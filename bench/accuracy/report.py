@@ -513,22 +513,13 @@ three finest levels is extrapolated and marked as such.
     if any(r["case"] in CONTACT_CASES for r in rows):
         tab, verdicts = robustness(rows)
         parts.append(ROBUSTNESS_TEXT.format(maxit=MAX_ITERATIONS, table=tab,
-                                            met=sum(v for *_, v in verdicts), n=len(verdicts),
-                                            hard_its=_range([r for r in rows if r["case"] == "interface"
-                                                             and _split(r["family"])[1] == "nts-hard"
-                                                             and str(r.get("status", "ok")) == "ok"],
-                                                            "contact_iterations")))
+                                            met=sum(v for *_, v in verdicts), n=len(verdicts)))
     parts.append(SUMMARY_TEMPLATE)
     sys.path.insert(0, os.path.join(ROOT, "bench", "adapt"))
     import section as adaptive                       # the adaptive section (bench/adapt/dam.py's results)
     with open(doc, "w") as f:
         f.write(adaptive.insert("\n".join(parts), adaptive.section()))
     print(f"wrote {doc} and {len(case_names)} figures in {figdir}")
-
-
-def _range(rs, key):
-    v = [int(r[key]) for r in rs if math.isfinite(r.get(key, float("nan")))]
-    return f"{min(v)}-{max(v)}" if v else "-"
 
 
 ROBUSTNESS_TEXT = """\
@@ -541,10 +532,11 @@ from each run's iteration records in the HDF5 file (`/steps/NNNN/contact/iterati
 `bench/accuracy/main.py`, `contact_stats_h5`; every deck here has one step, one
 increment): *iterations per increment* is the number of records of the step,
 *numeric factorizations* the records with `factorized` = 1, *re-solves only* the
-iterations that reused the factor (N - F); from the log, *fallbacks*: the lines
-'(geometric contact stiffness off for this step: ...)' (the frozen-pairing fallback of
-node-to-segment with finite sliding; HARD's switch-off of the geometric part at its
-first multiplier update is not logged and not counted). The result file of a failed run
+iterations that reused the factor (N - F: solves with the factor of the same matrix or,
+by GMRES, of a nearby pairing); from the log, *fallbacks*: the lines '(Newton step on
+the pairing replaced by the frozen-pairing step: ...)' (finite sliding's Newton step
+given up for the frozen-pairing step when GMRES with the factor does not converge). The
+result file of a failed run
 has no step and no records: its iterations are the largest iteration number of the log's
 iteration table. The three finest levels of each family and
 formulation, separated by ' / '; a run that failed stops its family. The verdict is over
@@ -553,23 +545,17 @@ all levels of the family.
 {table}
 
 {met} of {n} family/formulation combinations meet the target on every level. The code
-refactorizes only when the active set, the pairing (segment, xi, normal) or the
-geometric (Newton) part changed, or HARD's springs stiffened (`same_key` in
-`src/contact/rules.f90`): with node to surface and finite sliding the pairing follows the
-deformation, so every iteration factorizes (N = F) although the active set no longer
-changes, HARD included (its geometric part is off from the first multiplier update on, but
-the projections still move). SURFACE TO SURFACE has a fixed pairing and no geometric part:
-HARD searches the active set on soft springs (K h/E = 10; one factorization per active
-set), factorizes once more when they stiffen at the first multiplier update (K h/E = 1e3),
-and then only re-solves (interface: 4 iterations, 2 factorizations at every level).
-
-Where the target is missed: the interface case with node to surface. *NTS HARD* needs
-{hard_its} iterations where the penalty needs 3-4 on the same meshes (10 on the finest FEM quads,
-where NTS HARD needs 37): after the soft search (3
-Newton iterations on the coarsest Voronoi mesh) the springs stiffen, and with the Newton
-part off the finite-sliding pairing converges as a fixed point (the residual falls by a
-factor 2-30 per iteration) between multiplier updates that each wait for it; every iteration
-refactorizes. On the finest meshes the iteration does not settle (the Notes below).
+factorizes when the active set, the segments or HARD's springs change
+(`same_key`/`near_key` in `src/contact/rules.f90`); a pairing whose projections moved by
+at most a tenth of a segment is solved with the factor of the old one by GMRES, and so
+are the Newton steps of finite sliding, whose tangent (not symmetric) the factor lacks
+(docs/contact-robustness.md, session 4). So node to surface with the penalty factorizes
+once per run here (3 iterations: the undeformed pairing, then two Newton steps), NTS HARD
+twice (the soft search of the active set, K h/E = 10, and the stiffened springs,
+K h/E = 1e3; 6-10 iterations: the multiplier updates and the Newton steps on the pairing
+run together), and SURFACE TO SURFACE, whose pairing is fixed, twice as well (4
+iterations: the soft search, the stiffening, then re-solves). Hertz needs more
+factorizations because its active set grows from a point over 3-5 iterations.
 """
 
 
@@ -618,9 +604,9 @@ SUMMARY_TEMPLATE = """\
   three on the paper's coarse meshes (peak 3.3 % off at 389 elements, 2.2 % at 600, against
   0.8 % for the penalty), and it costs more iterations: 7-10 (4-8 factorizations; the
   active set is searched on soft springs, then the stiffened springs' multiplier updates
-  only re-solve) against 4-5 for the penalty; NTS HARD 8-10 iterations, each with a
-  factorization, 0.8-2.3 times the penalty's run time at 5e3 unknowns and above (4.1 in
-  one noisy level). All three meet the robustness target on every Hertz mesh. The
+  only re-solve) against 4-5 for the penalty; NTS HARD 6-8 iterations with 3-5
+  factorizations (one per active set of the search, one for the stiffening). All three
+  meet the robustness target on every Hertz mesh. The
   resultants agree (99.7 of the
   applied 100 on the half model by the trapezoid rule, for all three), so these are
   accuracy and cost differences, not wrong answers. Use the penalty (or HARD where no
@@ -635,44 +621,22 @@ SUMMARY_TEMPLATE = """\
   Voronoi and on quads, at every level, the contact pressure, the resultant and the
   stresses are exact to round-off (1e-12 relative or below), in 4 iterations with 2
   numeric factorizations per run (the soft search, then the stiffened springs), for a
-  few percent more unknowns (the inserted interface nodes) and a run time of 0.7-1.6
-  times the penalty's where the penalty converges in 3-4 iterations (noisy at a load of
-  2-5), a twelfth of it on the finest quads (3.5 s against 42 s), and it is the only
-  formulation that converges on the finest Voronoi mesh. Use it for non-matching interfaces of
-  VEM bodies where the local contact pressure matters.
+  few percent more unknowns (the inserted interface nodes) and a run time of 0.4-1.3
+  times the penalty's (noisy at a load of 2-5; node to surface with the penalty
+  factorizes only once). Use it for non-matching interfaces of VEM bodies where the local
+  contact pressure matters.
 
 ## Notes
 
-- The interface case with Voronoi meshes of 2 × 25 600 cells (about 2·10^5 unknowns,
-  K = 1e12, K h/E about 10) still fails with node to surface, penalty and HARD alike:
-  the iteration does not settle and stops after 50 iterations (exit status 4; a known
-  weakness, docs/status.md). It is recorded as a failed run above. The coarser Voronoi
-  meshes converge in 3-4 (penalty) and 13-22 (HARD) iterations. SURFACE TO SURFACE
-  converges on the same mesh in 4 iterations with 2 factorizations. Both node-to-surface
-  runs drop the geometric part once (one fallback each: the matrix with it is not
-  positive definite) and then wander without converging, the relative residual between
-  2e-5 and 1.6e-4 after iteration 15 (1.2e-4 and 8.9e-5 at iteration 50) and a largest
-  pressure of 3e8 to 2e9 where the answer is 6.7e7 (a wrong state, not a slow
-  convergence). The NTS HARD run never gets past its soft search (the residual never
-  reaches the tolerance, so no multiplier update happens; 295-298 closed nodes).
-- On the finest structured quads (1.3·10^5 unknowns) node to surface with finite sliding
-  converges as a fixed point: the penalty in 43 iterations on VEM quads (after one
-  fallback: the Newton steps diverge) and in 10 on FEM quads (no fallback). NTS HARD on
-  VEM quads **fails**: one fallback at iteration 4, the frozen-pairing fixed point on the
-  soft springs reaches the residual tolerance only at iteration 45, the first multiplier
-  update follows, and the iteration limit comes at iteration 50 with the penetration at
-  1e-10 and a relative residual of 1e-11, the pressures still changing by more than the
-  tolerance (exit status 4). On FEM quads NTS HARD converges, in 37 iterations (no
-  fallback; 4.5 times the penalty's run time). SURFACE TO SURFACE converges on the same
-  meshes in 4 iterations with 2 factorizations.
-- With NTS HARD every iteration is a numeric factorization (finite sliding: the pairing
-  changes each iteration), and the soft search and the multiplier updates add
-  iterations: 8-10 per increment on Hertz and 13-37 on the interface where the penalty
-  needs 3-5 (43 on the finest VEM quads), so NTS HARD costs 0.6-2.3 times the
-  penalty's run time on Hertz (4.1 once) and 0.8-6.5 times on the interface at the same mesh
-  (tables above; single levels are noisy at a load of 2-5). With `SMALL SLIDING` the
-  pairing is fixed and the updates only re-solve (docs/performance.md, "Contact
-  formulations").
+- Node to surface with finite sliding converges on every interface mesh here, the finest
+  included (2 × 25 600 Voronoi cells, about 2·10^5 unknowns, K h/E about 10: 3 iterations
+  with the penalty, 10 with HARD), since session 4 (the master's reference normal, and
+  Newton steps on the pairing by GMRES). Before, with the current normal, these runs did
+  not settle (exit status 4 after 50 iterations), the finest VEM quads took 43 iterations
+  with the penalty and failed with HARD, and NTS HARD took 13-22 iterations with a
+  factorization each (docs/contact-robustness.md has the before/after table).
+- With `SMALL SLIDING` the pairing is fixed and an iteration whose active set holds only
+  re-solves (docs/performance.md, "Contact formulations").
 - Small runs (< 0.05 s) are dominated by fixed costs and by the noise of the shared
   machine: their time ratios mean little. The runs of a study take turns on one core;
   other jobs on the machine add noise that the median of the repeats only partly removes.

@@ -250,7 +250,9 @@ contains
          end if
          if (.not. solved) then
             ! the frozen-pairing step with the factor of its own matrix (also where the
-            ! sliding part was too strong for it)
+            ! sliding part was too strong for it: said in the log)
+            if (op%sliding .and. present(log)) call log%say('        (Newton step on the pairing '// &
+               'replaced by the frozen-pairing step: GMRES did not converge with the factor)')
             op%sliding = .false.
             call direct_solve(u)
             if (allocated(error)) return
