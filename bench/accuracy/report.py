@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 
 import numpy as np
 
@@ -514,8 +515,10 @@ three finest levels is extrapolated and marked as such.
         parts.append(ROBUSTNESS_TEXT.format(maxit=MAX_ITERATIONS, table=tab,
                                             met=sum(v for *_, v in verdicts), n=len(verdicts)))
     parts.append(SUMMARY_TEMPLATE)
+    sys.path.insert(0, os.path.join(ROOT, "bench", "adapt"))
+    import section as adaptive                       # the adaptive section (bench/adapt/dam.py's results)
     with open(doc, "w") as f:
-        f.write("\n".join(parts))
+        f.write(adaptive.insert("\n".join(parts), adaptive.section()))
     print(f"wrote {doc} and {len(case_names)} figures in {figdir}")
 
 

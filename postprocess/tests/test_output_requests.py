@@ -79,11 +79,14 @@ def read_print(path):
 
 
 def test_fields_per_step(runs):
-    """Step 1 U; step 2 U and S; step 3 RF and (carried over from step 2) S."""
+    """Step 1 U; step 2 U and S; step 3 RF and (carried over from step 2) S.  The
+    error estimate's ERROR_INDICATOR goes with S."""
     d = runs["req"]
     stress = {"S", "S1", "S3", "MISES"}
-    want_vtu = [({"U"}, set()), ({"U"} | stress, {"S"}), ({"RF"} | stress, {"S"})]
-    want_h5 = [{"U"}, {"U", "S_element", "S_node"}, {"RF", "RF_total", "RF_sets", "S_element", "S_node"}]
+    cell_s = {"S", "ERROR_INDICATOR"}
+    h5_s = {"S_element", "S_node", "ERROR_INDICATOR"}
+    want_vtu = [({"U"}, set()), ({"U"} | stress, cell_s), ({"RF"} | stress, cell_s)]
+    want_h5 = [{"U"}, {"U"} | h5_s, {"RF", "RF_total", "RF_sets"} | h5_s]
     for k in range(3):
         point, cell = vtu_fields(d / f"p_{k + 1:04d}.vtu")
         assert point == want_vtu[k][0] | LABELS_POINT, (k + 1, point)
@@ -103,9 +106,10 @@ def test_no_requests_writes_everything(runs):
     for k in range(1, 4):
         point, cell = vtu_fields(d / f"p_{k:04d}.vtu")
         assert point == {"U", "S", "S1", "S3", "MISES", "RF", "E"} | LABELS_POINT
-        assert cell == {"S", "E"} | LABELS_CELL
+        assert cell == {"S", "E", "ERROR_INDICATOR"} | LABELS_CELL
         steps, _ = h5_fields(d / "p.h5", f"{k:04d}")
-        assert steps == {"U", "S_element", "S_node", "E_element", "E_node", "RF", "RF_total", "RF_sets"}
+        assert steps == {"U", "S_element", "S_node", "ERROR_INDICATOR", "E_element", "E_node", "RF", "RF_total",
+                         "RF_sets"}
     assert not list(d.glob("*_print_*.csv"))
 
 

@@ -15,6 +15,7 @@ module vemcontact_driver_static
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
    use vemcontact_post_stress, only: nodal_average
+   use vemcontact_post_estimate, only: error_estimate_t, estimate_error
    use vemcontact_post_reactions, only: reaction_forces, constrained_sets
    use vemcontact_post_labels, only: element_section_sets, element_parts
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
@@ -80,6 +81,7 @@ contains
       type(load_state_t) :: st
       type(contact_state_t) :: contact
       type(contact_table_t) :: tab
+      type(error_estimate_t) :: est
       integer, allocatable :: parts(:)
       integer :: ip_
       real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:), s_at(:, :)
@@ -223,6 +225,17 @@ contains
             call element_strains(model, u, extra%e_elem, st%dload)
             call nodal_average(model, extra%e_elem, extra%e_node)
          end if
+         ! the recovery-based error estimate (first-order elements only: the
+         ! recovery compares a linear field with the constant element stress)
+         if (.not. allocated(s_at)) then
+            call estimate_error(model, s_elem, est)
+            call log%phase('estimate', wall_time() - t0)
+            call say_estimate(est)
+            t0 = wall_time()
+         else if (istep == 1) then
+            call log%say('  no error estimate: the model has second-order elements (the recovery is '// &
+                         'for first-order elements; docs/error-estimate.md)')
+         end if
          ! reactions: K u - f_ext at the constrained dofs, with the loads in force
          call sys%elastic_times(u, ku)
          call assemble_loads(model, st%force, st%dload, f)
@@ -240,13 +253,14 @@ contains
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)
          call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
-                        s_elem, s_node, error, opts%compress_vtu, extra, sel)
+                        s_elem, s_node, error, opts%compress_vtu, extra, sel, indicator=est%indicator)
          if (allocated(error)) return
          vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
          times = [times, real(istep, wp)]
          parts = [parts, 0]
          call h5%write_step(istep, name, real(istep, wp), reshape(u_out, [2, int(model%nnode)]), &
-                            s_elem, s_node, error, sel)
+                            s_elem, s_node, error, sel, indicator=est%indicator, &
+                            estimate=est%estimate, energy=est%energy)
          if (allocated(error)) return
          call h5%write_results(istep, extra%e_elem, extra%e_node, extra%rf, set_names, set_rf, error, sel)
          if (allocated(error)) return
@@ -316,6 +330,36 @@ contains
       call log%say('  '//base//'.pvd')
       call log%say('  '//base//'.h5')
    contains
+      !> "estimated relative energy error 2.3 %; 50 % of it in 4.1 % of the cells, around (x, y)"
+      subroutine say_estimate(e)
+         type(error_estimate_t), intent(in) :: e
+         if (.not. (e%estimate > 0.0_wp)) then
+            call log%say('  estimated relative energy error 0 %')
+            return
+         end if
+         call log%say('  estimated relative energy error '//number(100.0_wp*e%relative, 3)//' %; 50 % of it in '// &
+                      number(100.0_wp*e%half_fraction, 2)//' % of the cells, around ('//number(e%largest_at(1), 5)//', '// &
+                      number(e%largest_at(2), 5)//')')
+      end subroutine say_estimate
+
+      !> A value with `digits` significant digits, fixed-point from 1e-3 to 1e5, else exponential.
+      function number(v, digits) result(s)
+         real(wp), intent(in) :: v
+         integer, intent(in) :: digits
+         character(len=:), allocatable :: s
+         character(len=32) :: b
+         character(len=16) :: f
+         if (abs(v) >= 1.0e-3_wp .and. abs(v) < 1.0e5_wp) then
+            write (f, '(a,i0,a)') '(f24.', max(0, digits - 1 - floor(log10(abs(v)))), ')'
+         else if (abs(v) > 0.0_wp) then
+            write (f, '(a,i0,a)') '(es24.', digits - 1, ')'
+         else
+            f = '(f3.1)'
+         end if
+         write (b, f) v
+         s = trim(adjustl(b))
+      end function number
+
       !> Totals of the reaction forces (all nodes, and per constrained node set)
       !> beside the applied loads they balance.
       subroutine log_reactions(rf, fext, names, totals)

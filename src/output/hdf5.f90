@@ -171,8 +171,10 @@ contains
 
    !> Write /steps/NNNN (index zero-padded to 4 digits, wider beyond 9999) with
    !> attributes name and time and datasets U, S_element, S_node (with `sel`: those
-   !> selected); then flush.
-   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error, sel)
+   !> selected); then flush.  With `indicator`, written with S: the dataset
+   !> ERROR_INDICATOR (nelem) and the step attributes error_estimate and energy_norm
+   !> (vemcontact_post_estimate).
+   subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error, sel, indicator, estimate, energy)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
       character(len=*), intent(in) :: name
@@ -182,6 +184,9 @@ contains
       real(wp), intent(in) :: s_node(:, :)   !< (4, nnode)
       type(error_t), allocatable, intent(out) :: error
       type(field_selection_t), intent(in), optional :: sel
+      real(wp), intent(in), optional :: indicator(:)  !< (nelem) error indicator per cell
+      real(wp), intent(in), optional :: estimate      !< the global error estimate
+      real(wp), intent(in), optional :: energy        !< energy norm of the discrete stress
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
@@ -196,6 +201,13 @@ contains
          call fatal_error(error, 'write_step: array shapes do not match the mesh written ('// &
                           self%path//')', err_internal)
          return
+      end if
+      if (present(indicator)) then
+         if (size(indicator) /= self%nelem) then
+            call fatal_error(error, 'write_step: indicator size does not match the mesh written ('// &
+                             self%path//')', err_internal)
+            return
+         end if
       end if
       if (istep < 0) then
          call fatal_error(error, 'write_step: negative step index ('//self%path//')', err_internal)
@@ -216,6 +228,14 @@ contains
          call put_real(self, grp, 'S_element', shape(s_elem, hsize_t), s_elem, error)
       if (.not. allocated(error) .and. w%s) &
          call put_real(self, grp, 'S_node', shape(s_node, hsize_t), s_node, error)
+      if (present(indicator) .and. w%s) then
+         if (.not. allocated(error)) &
+            call put_real(self, grp, 'ERROR_INDICATOR', [int(self%nelem, hsize_t)], indicator(1:self%nelem), error)
+         if (present(estimate) .and. .not. allocated(error)) &
+            call put_real_attribute(self, grp, 'error_estimate', estimate, error)
+         if (present(energy) .and. .not. allocated(error)) &
+            call put_real_attribute(self, grp, 'energy_norm', energy, error)
+      end if
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return

@@ -105,10 +105,12 @@ contains
    !> Arrays are zlib-compressed unless `compress` is present and false.
    !> With `extra`: FieldData TimeValue and the names of the element sets and
    !> materials (an Int32 array "ELSET:name" or "MATERIAL:name" holding the id),
-   !> point data RF and E, cell data E, ELSET and PART.  With `sel` only the
-   !> selected result fields (U, S with S1, S3, MISES, RF, E) are written; the
-   !> mesh and the labels (NODE_ID, ELEMENT_ID, MATERIAL, ELSET, PART) always.
-   subroutine write_vtu(path, model, u, s_elem, s_node, error, compress, extra, sel)
+   !> point data RF and E, cell data E, ELSET and PART.  With `indicator`: cell
+   !> data ERROR_INDICATOR (vemcontact_post_estimate), written with S.  With `sel`
+   !> only the selected result fields (U, S with S1, S3, MISES and ERROR_INDICATOR,
+   !> RF, E) are written; the mesh and the labels (NODE_ID, ELEMENT_ID, MATERIAL,
+   !> ELSET, PART) always.
+   subroutine write_vtu(path, model, u, s_elem, s_node, error, compress, extra, sel, indicator)
       character(len=*), intent(in) :: path
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:, :)        !< (2, nnode)
@@ -118,6 +120,7 @@ contains
       logical, intent(in), optional :: compress
       type(vtu_extras_t), intent(in), optional :: extra
       type(field_selection_t), intent(in), optional :: sel
+      real(wp), intent(in), optional :: indicator(:)  !< (nelem) error indicator per cell
       type(field_selection_t) :: w
       character(len=:), allocatable :: itype
       character(len=*), parameter :: s_names = ' NumberOfComponents="9"'//tensor_names
@@ -139,6 +142,13 @@ contains
          call fatal_error(error, 'write_vtu: array shapes do not match the model ('//path//')', &
                           err_internal)
          return
+      end if
+      if (present(indicator)) then
+         if (size(indicator) /= model%nelem) then
+            call fatal_error(error, 'write_vtu: indicator size does not match the model ('//path//')', &
+                             err_internal)
+            return
+         end if
       end if
       if (present(extra)) then
          if (.not. extras_fit(extra, model)) then
@@ -200,6 +210,8 @@ contains
       ibuf = int(model%elem_mat(1:model%nelem), ip)
       call put_array(unit, 'type="'//itype//'" Name="MATERIAL"', as_bytes(ibuf), ios, z)
       call put_array(unit, 'type="'//itype//'" Name="ELEMENT_ID"', as_bytes(model%elem_id(1:model%nelem)), ios, z)
+      if (present(indicator) .and. w%s) &
+         call put_array(unit, 'type="Float64" Name="ERROR_INDICATOR"', as_bytes(indicator(1:model%nelem)), ios, z)
       if (present(extra)) then
          if (allocated(extra%e_elem) .and. w%e) call put_array(unit, 'type="Float64" Name="E"'//s_names, &
                                                      as_bytes(full_tensor(extra%e_elem, 0.5_wp)), ios, z)

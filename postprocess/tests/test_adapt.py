@@ -1,0 +1,146 @@
+"""vc-adapt (postprocess/vctools/adapt.py) on the L-shaped domain, whose re-entrant corner
+makes the stress singular (r^(lambda - 1), lambda = 0.5445 for the 270-degree corner): the
+energy error of uniform refinement falls like N^(-lambda/2) = N^-0.27 asymptotically, that of
+bulk-marked adaptive refinement like N^-1/2 (optimal for k = 1).  Measured on these meshes
+(estimated error against unknowns, docs/error-estimate.md): adaptive 0.47 over cycles 2-6,
+uniform 0.335 over its three levels (still pre-asymptotic)."""
+import math
+
+import h5py
+import numpy as np
+import pytest
+
+from vctools import adapt
+
+SCENE = """[mesh]
+title = "L-shaped domain"
+seed = 3
+lloyd = 20
+plane = "strain"
+
+[[body]]
+name = "L"
+polygon = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]
+cells = 60
+
+[[selection]]
+name = "BOTTOM"
+y = 0.0
+
+[[selection]]
+name = "TOP"
+y = 2.0
+"""
+
+DECK = """*HEADING
+L-shaped domain: bottom clamped, top edge moved sideways (re-entrant corner at (1, 1))
+*INCLUDE, INPUT=lshape_mesh.inp
+*MATERIAL, NAME=M
+*ELASTIC
+1000.0, 0.3
+*SOLID SECTION, ELSET=L, MATERIAL=M
+1.0
+*BOUNDARY
+BOTTOM, 1, 2
+*STEP
+*STATIC
+*BOUNDARY
+TOP, 1, 1, 0.01
+TOP, 2, 2, 0.0
+*END STEP
+"""
+
+
+def rate(rows, first=0):
+    """Slope of -log(estimate) against log(unknowns) from row `first` to the last."""
+    n = [r["unknowns"] for r in rows[first:]]
+    e = [r["estimate"] for r in rows[first:]]
+    return -np.polyfit(np.log(n), np.log(e), 1)[0]
+
+
+@pytest.fixture
+def lshape(tmp_path):
+    (tmp_path / "lshape.toml").write_text(SCENE)
+    (tmp_path / "lshape.inp").write_text(DECK)
+    return tmp_path
+
+
+def test_adaptive_rate_on_lshape(lshape, exe):
+    lines = []
+    rows = adapt.adapt(lshape / "lshape.inp", lshape / "lshape.toml", 1e-3, lshape / "ad", max_unknowns=5000,
+                       exe=exe, echo=lines.append)
+    assert len(rows) >= 5, lines
+    assert "beyond the budget" in lines[-1]
+    # every cycle kept: mesh, size field, deck and results; the HDF5 agrees with the table
+    for r in rows:
+        c = lshape / "ad" / f"cycle_{r['cycle']:02d}"
+        assert (c / "mesh.inp").is_file() and (c / "lshape.inp").is_file()
+        with h5py.File(c / "lshape.h5") as f:
+            assert 2 * len(f["mesh/coordinates"]) == r["unknowns"]
+            assert f["steps/0001"].attrs["error_estimate"] == r["estimate"]
+        # the named selections survive remeshing: the deck's BOTTOM and TOP sets are there
+        text = (c / "mesh.inp").read_text().upper()
+        assert "NSET=BOTTOM" in text and "NSET=TOP" in text
+    assert all((lshape / "ad" / f"cycle_{k:02d}" / "size.npz").is_file() for k in range(len(rows) - 1))
+    assert all(b["estimate"] < a["estimate"] for a, b in zip(rows, rows[1:]))
+    # the marked cells gather at the corner: the smallest cells of the last mesh are there
+    x = adapt.read_estimate(lshape / "ad" / f"cycle_{rows[-1]['cycle']:02d}" / "lshape.h5")
+    cen, area = adapt.cell_geometry(*x[1:])
+    small = cen[np.argsort(area)[:10]]
+    assert np.hypot(small[:, 0] - 1, small[:, 1] - 1).max() < 0.1
+    r_ad = rate(rows, 2)
+    # optimal 0.5; 0.42 leaves room for the pre-asymptotic cycles and the random seeds
+    assert r_ad > 0.42, rows
+
+    uni = adapt.adapt(lshape / "lshape.inp", lshape / "lshape.toml", 1e-3, lshape / "un", max_unknowns=5000,
+                      uniform=True, exe=exe, echo=lines.append)
+    assert len(uni) == 3
+    r_un = rate(uni)
+    # singular: uniform refinement is slower (0.27 asymptotically, 0.335 measured here)
+    assert r_un < 0.4 and r_un < r_ad - 0.08, (r_un, r_ad)
+    # the same estimated error with fewer unknowns (2828 against 3848 here; the gap widens
+    # with refinement, docs/error-estimate.md)
+    target = uni[-1]["estimate"]
+    n_ad = min(r["unknowns"] for r in rows if r["estimate"] <= target)
+    assert n_ad < 0.8 * uni[-1]["unknowns"], (n_ad, uni[-1]["unknowns"])
+
+
+def test_target_reached_and_errors(lshape, exe):
+    lines = []
+    rows = adapt.adapt(lshape / "lshape.inp", lshape / "lshape.toml", 0.16, lshape / "t", exe=exe, echo=lines.append)
+    assert rows[-1]["relative_error"] <= 0.16 < rows[-2]["relative_error"]
+    assert "reached" in lines[-1]
+    assert adapt.parse_fraction("1%") == pytest.approx(0.01)
+    assert adapt.parse_fraction("0.02") == pytest.approx(0.02)
+    for bad in ("abc", "0", "150%"):
+        with pytest.raises(adapt.AdaptError):
+            adapt.parse_fraction(bad)
+    assert adapt.main([str(lshape / "missing.inp"), "--scene", str(lshape / "lshape.toml"), "--exe", exe]) == 2
+
+
+def test_doerfler():
+    eta = np.array([1.0, 3.0, 2.0, 0.5])
+    # squares 1, 9, 4, 0.25: 9 alone holds 63 % of 14.25; 9 + 4 hold 91 %
+    assert adapt.doerfler(eta, 0.5).tolist() == [False, True, False, False]
+    assert adapt.doerfler(eta, 0.7).tolist() == [False, True, True, False]
+    assert adapt.doerfler(eta, 1.0).all()
+    assert math.isclose(adapt.doerfler(np.zeros(3), 0.5).sum(), 3)
+
+
+def test_size_field_grading(tmp_path):
+    from vctools.mesh.errors import MeshError
+    from vctools.mesh.sizing import Grading
+    pts = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
+    np.savez(tmp_path / "f.npz", points=pts, size=np.array([0.1, 0.2, 0.2, 0.4]))
+    g = Grading([{"field": str(tmp_path / "f.npz")}], "body 'B'")
+    v = g.relative_size(np.vstack([pts, [[0.5, 0.5]]]))
+    # at the points: their sizes over the largest; at the centre, equidistant from all
+    # four: the geometric mean (0.1 * 0.2 * 0.2 * 0.4)^(1/4) / 0.4
+    np.testing.assert_allclose(v, [0.25, 0.5, 0.5, 1.0, 0.2 / 0.4], rtol=1e-12)
+    # gradation limit: a small size spreads to its neighbours by at most 0.3 per unit length
+    s = adapt.graded_sizes(np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]), np.array([0.01, 1.0, 1.0]))
+    np.testing.assert_allclose(s, [0.01, 0.31, 0.61])
+    np.savez(tmp_path / "bad.npz", points=pts, size=np.array([0.1, 0.0, 0.2, 0.4]))
+    for bad in ("missing.npz", "bad.npz"):
+        with pytest.raises(MeshError, match="grading field"):
+            Grading([{"field": str(tmp_path / bad)}], "body 'B'")
