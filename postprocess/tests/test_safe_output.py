@@ -337,15 +337,19 @@ def test_kills_at_random_points(exe, tmp_path):
     lists only existing files, JOB.h5 is absent or complete; a last full run
     leaves complete results and no temporaries."""
     out = tmp_path / "out"
-    t0 = time.perf_counter()
-    assert run(exe, DAM, out).returncode == 0
-    duration = time.perf_counter() - t0
+    # the shorter of two full runs: the first can be slow (cold caches, a loaded
+    # machine), and sleeps beyond a run's length kill nothing
+    duration = float("inf")
+    for _ in range(2):
+        t0 = time.perf_counter()
+        assert run(exe, DAM, out).returncode == 0
+        duration = min(duration, time.perf_counter() - t0)
     rng = random.Random(11)
     kills = 0
     for _ in range(12):
         p = subprocess.Popen([exe, "-q", "-o", str(out), DAM], stdout=subprocess.DEVNULL,
                              stderr=subprocess.DEVNULL)
-        time.sleep(rng.uniform(0.0, 1.1 * duration))
+        time.sleep(rng.uniform(0.0, 0.9 * duration))
         p.kill()
         rc = p.wait()
         kills += rc == -9
