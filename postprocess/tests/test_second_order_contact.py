@@ -11,6 +11,7 @@ node, side nodes included, to round-off.  The element widths differ (0.7, 1.3
 and 0.5) so that a wrong weight (for example half the side to each corner,
 nothing to the side node) would show."""
 import subprocess
+from pathlib import Path
 
 import h5py
 import numpy as np
@@ -118,3 +119,54 @@ def test_uniform_pressure_through_second_order_sides(exe, tmp_path, etype, behav
     assert np.abs(s[:, 2] + NU * P).max() <= 1e-8 * P
     assert np.abs(s[:, [0, 3]]).max() <= 1e-8 * P
 
+
+# ---------------------------------------------------------------- Hertz, k = 2
+ROOT = Path(__file__).resolve().parents[2]
+# unknowns of the first-order 1155-element mesh (1241 nodes), which the
+# issue's target compares with
+UNKNOWNS_1155 = 2482
+
+
+def hertz(exe, tmp_path, form, behavior):
+    text = (ROOT / "inputs" / f"hertz_329_{form}2.inp").read_text()
+    if behavior == "HARD":
+        text = text.replace("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1.0e5\n",
+                            "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n")
+        assert "HARD" in text
+    text = text.replace("INPUT=meshes/", f"INPUT={ROOT / 'inputs' / 'meshes'}/")
+    inp = tmp_path / "h.inp"
+    inp.write_text(text)
+    r = subprocess.run([exe, "-q", "-o", str(tmp_path), str(inp)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with h5py.File(tmp_path / "h.h5") as f:
+        c = f["steps/0001/contact/pair_1"]
+        return (np.array(c["CPRESS"]), np.array(c["CNAREA"]), np.array(c["coordinates"]),
+                f["mesh/coordinates"].shape[0])
+
+
+@pytest.mark.parametrize("behavior", ["LINEAR", "HARD"])
+def test_hertz_cpe8_329(exe, tmp_path, behavior):
+    """Disc R = 10 (E = 1e3) on a block (E = 1e6), plane strain, 100 on the half
+    model: p0 = 83.60, a = 1.523 (docs/paper-reproduction.md).  CPE8 bodies
+    (the disc's arc side nodes on the circle), 329 elements, 2162 unknowns: the
+    peak within 1 % of 83.60 with fewer unknowns than the first-order 1155-element
+    mesh (measured: +0.17 % LINEAR K = 1e5, +0.44 % HARD), the half-width of a
+    least-squares fit of p^2 = p0^2 (1 - x^2/a^2) within 5 % (as for first order),
+    and the transmitted force sum CPRESS * CNAREA = 100 (equilibrium of the disc:
+    round-off and the solver's residual, 1e-6 relative)."""
+    p, area, x, nnode = hertz(exe, tmp_path, "fem", behavior)
+    assert 2 * nnode < UNKNOWNS_1155
+    assert abs(p.max() / 83.60 - 1) < 0.01
+    m = p > 0
+    slope, intercept = np.polyfit(x[m, 0] ** 2, p[m] ** 2, 1)
+    assert abs(np.sqrt(-intercept / slope) / 1.523 - 1) < 0.05
+    assert (p * area).sum() == pytest.approx(100.0, rel=1e-6)
+
+
+def test_hertz_vpe2_329_force(exe, tmp_path):
+    """The same scene with k = 2 virtual elements: the disc's straight sides put the
+    side nodes on the arc inside the circle by l^2/(8R), and the peak comes out about
+    9 % high on this mesh (documented, not asserted); what is asserted holds for any
+    mesh: the transmitted force sum CPRESS * CNAREA = 100."""
+    p, area, _, _ = hertz(exe, tmp_path, "vem", "LINEAR")
+    assert (p * area).sum() == pytest.approx(100.0, rel=1e-6)
