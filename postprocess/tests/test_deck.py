@@ -53,7 +53,7 @@ def test_big_cell_continues_lines_and_ids(tmp_path):
 def test_paper_scenes_write_consistent_decks(tmp_path):
     assert main(["paper", "--scenes", str(SCENES), "-o", str(tmp_path)]) == 0
     files = sorted(tmp_path.glob("*.inp"))
-    assert len(files) == 18 + 18 + 6 + 7 + 1        # example 1: first and second order
+    assert len(files) == 18 + 18 + 6 + 2 + 7 + 1    # examples 1 and 2: first and second order
     total = 0
     for f in files:
         text = f.read_text()

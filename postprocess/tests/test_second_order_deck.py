@@ -235,8 +235,8 @@ E, GRAV, 0.01, 0.0, -1.0
     (deck("VPE2").replace("*CLOAD", "*DLOAD\n1, P5, 1.0\n*CLOAD"), "has 4 sides, so there is no side P5"),
     (deck("VPE2").replace("*BOUNDARY", "*SURFACE, NAME=A\n1, S1\n*SURFACE, NAME=B\n2, S1\n"
                           "*SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-                          "1.0e3\n*CONTACT PAIR, INTERACTION=I, TYPE=NODE TO SURFACE\nA, B\n*BOUNDARY"),
-     "contact on sides with a middle node is not supported"),
+                          "1.0e3\n*CONTACT PAIR, INTERACTION=I, TYPE=SURFACE TO SURFACE\nA, B\n*BOUNDARY"),
+     "TYPE=SURFACE TO SURFACE contact on sides with a middle node is not supported"),
 ])
 def test_second_order_errors(exe, tmp_path, text, msg):
     r = run(exe, tmp_path, text, "bad")

@@ -63,14 +63,24 @@ def test_hertz_scene_counts():
         got[name] = m.ncell
         assert set(m.nsurfaces) == {"HERTZ_SLAVE"} and "HERTZ_MASTER" in m.esurfaces
         slave = m.nodes[m.nsurfaces["HERTZ_SLAVE"]]
-        assert np.allclose(np.hypot(slave[:, 0], slave[:, 1] - 20), 10) and (slave[:, 1] <= 20).all()
+        r = np.hypot(slave[:, 0], slave[:, 1] - 20)
+        if name.endswith("vem2"):
+            # second-order VEM: corners on the circle, side nodes at the middles of
+            # the straight sides between them (inside the circle)
+            on = np.isclose(r, 10)
+            corners = slave[on]
+            for q in slave[~on]:
+                assert np.min(np.hypot(*(0.5 * (corners[:, None] + corners[None]) - q).T)) < 1e-12
+            assert (r <= 10 + 1e-12).all() and (slave[:, 1] <= 20).all()
+        else:
+            assert np.allclose(r, 10) and (slave[:, 1] <= 20).all()
         c, s_ = m.esurfaces["HERTZ_MASTER"]
         assert (m.cell_body[c] == 1).all()
         assert np.allclose(m.nodes[m.nsets["HERTZ_MASTER"], 1], 10)
         assert np.allclose(m.nodes[m.nsets["DISC_TOP"]], [[0, 30]])
         assert np.allclose(m.nodes[m.nsets["SYMMETRY"], 0], 0)
     assert got == {"389_vem": 389, "389_fem": 389, "600_vem": 600, "600_fem": 600,
-                   "1155_vem": 1155, "1155_fem": 1155}
+                   "1155_vem": 1155, "1155_fem": 1155, "329_vem2": 329, "329_fem2": 329}
 
 
 def test_interface_scene():

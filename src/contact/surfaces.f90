@@ -6,11 +6,18 @@
 !> its undeformed tributary length L_s and a thickness, so that the penalty
 !> k_s = K * L_s * thickness turns the pressure slope K into a nodal spring.
 !> Everything here is set-up work done once per pair, O(connectivity).
+!>
+!> Second-order sides (corner a, corner b, side node m of a VPE2/VPS2, CPE8/CPS8
+!> or CPE6/CPS6 element): the master side gives two straight segments a -> m and
+!> m -> b (exact for the straight sides of the k = 2 virtual element, a chord
+!> approximation of a curved FEM side), and the slave points are all three nodes
+!> with the consistent tributary lengths of a uniform pressure on a quadratic
+!> side, l/6 at each corner and 4l/6 at the side node (l = |b - a|).
 module vemcontact_contact_surfaces
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input, err_internal
    use vemcontact_model, only: model_t, contact_pair_t, surface_t, location_string, &
-                               surface_element, surface_node
+                               surface_element, surface_node, element_side, element_order
    use vemcontact_contact_geometry, only: segment_is_degenerate, length2
    implicit none
    private
@@ -23,10 +30,11 @@ module vemcontact_contact_surfaces
 contains
 
    !> Master segments of `pair`: seg(:, k) = (a, b) node indices of the k-th
-   !> facet of the master surface in element orientation, seg_elem(k) its element,
-   !> seg_side(k) its side.  Errors (all listed): a master surface that is not of
-   !> TYPE=ELEMENT, an element side shared with another element (not on the mesh
-   !> boundary), a zero-length side.
+   !> segment of the master surface in element orientation, seg_elem(k) its element,
+   !> seg_side(k) its side.  A first-order side is one segment; a second-order
+   !> side (a, b, side node m) is two, a -> m and m -> b, in this order.  Errors
+   !> (all listed): a master surface that is not of TYPE=ELEMENT, an element side
+   !> shared with another element (not on the mesh boundary), a zero-length side.
    pure subroutine master_segments(model, pair, seg, seg_elem, seg_side, error)
       type(model_t), intent(in) :: model
       type(contact_pair_t), intent(in) :: pair
@@ -35,8 +43,8 @@ contains
       integer, allocatable, intent(out) :: seg_side(:)
       type(error_t), allocatable, intent(out) :: error
       integer(ip), allocatable :: node_ptr(:), node_elem(:)
-      integer(ip) :: e, other
-      integer :: k, nfac, nbad
+      integer(ip) :: e, other, abc(3)
+      integer :: k, nfac, nbad, nseg, ns
       character(len=:), allocatable :: where
 
       call check_surface_index(model, pair%master, 'master', error)
@@ -50,26 +58,41 @@ contains
          call check_facets(model, surf, where, error)
          if (allocated(error)) return
          nfac = size(surf%elem)
-         allocate (seg(2, nfac), seg_elem(nfac), seg_side(nfac))
+         nseg = 0
+         do k = 1, nfac
+            nseg = nseg + facet_order(model, surf%elem(k))
+         end do
+         allocate (seg(2, nseg), seg_elem(nseg), seg_side(nseg))
          call node_elements(model, node_ptr, node_elem)
          nbad = 0
+         nseg = 0
          do k = 1, nfac
             e = surf%elem(k)
-            seg(:, k) = side_nodes(model, e, surf%side(k))
-            seg_elem(k) = e
-            seg_side(k) = surf%side(k)
-            other = other_element(model, node_ptr, node_elem, e, seg(1, k), seg(2, k))
+            call element_side(model, e, surf%side(k), abc, ns)
+            if (abc(3) == 0) then
+               seg(:, nseg + 1) = abc(1:2)
+               seg_elem(nseg + 1) = e
+               seg_side(nseg + 1) = surf%side(k)
+               nseg = nseg + 1
+            else
+               seg(:, nseg + 1) = [abc(1), abc(3)]
+               seg(:, nseg + 2) = [abc(3), abc(2)]
+               seg_elem(nseg + 1:nseg + 2) = e
+               seg_side(nseg + 1:nseg + 2) = surf%side(k)
+               nseg = nseg + 2
+            end if
+            other = other_element(model, node_ptr, node_elem, e, abc(1), abc(2))
             if (other /= 0) then
                nbad = nbad + 1
                if (nbad <= max_listed) call append_message(error, where//': element '// &
                   itoa(model%elem_id(e))//' side '//itoa(surf%side(k))//' is shared with element '// &
                   itoa(model%elem_id(other))//', not on the mesh boundary: a master surface must be '// &
                   'an outer boundary', err_input)
-            else if (segment_is_degenerate(model%x(:, seg(1, k)), model%x(:, seg(2, k)))) then
+            else if (segment_is_degenerate(model%x(:, abc(1)), model%x(:, abc(2)))) then
                nbad = nbad + 1
                if (nbad <= max_listed) call append_message(error, where//': element '// &
                   itoa(model%elem_id(e))//' side '//itoa(surf%side(k))//' has zero length (nodes '// &
-                  itoa(node_user(model, seg(1, k)))//' and '//itoa(node_user(model, seg(2, k)))// &
+                  itoa(node_user(model, abc(1)))//' and '//itoa(node_user(model, abc(2)))// &
                   ' coincide)', err_input)
             end if
          end do
@@ -80,7 +103,12 @@ contains
    !> Slave nodes of `pair`, sorted, with their undeformed tributary length
    !> `length` and thickness `thick` (k_s = K * length * thick).
    !> Element surface: the facets' end nodes, each facet giving half its length
-   !> to each end.  Node surface: the mesh boundary edges (used by one element)
+   !> to each end; a second-order facet (a, b, side node m) gives all three
+   !> nodes, l/6 to a and b and 4l/6 to m, l = |m - a| + |b - m| (the consistent
+   !> nodal forces of a uniform pressure on a quadratic side, so that equal
+   !> pressures at the three nodes transmit exactly that pressure).  The same
+   !> holds for the boundary sides of a node surface, whose side nodes belong
+   !> to the face whether the set lists them or not.  Node surface: the mesh boundary edges (used by one element)
    !> with both ends in the set, or one end in the set and the other a node of
    !> the master surface outside the set (the tip shared by the faces of a
    !> joint, which a mesher leaves out), half to each end, thickness from that
@@ -101,8 +129,8 @@ contains
       logical, allocatable :: in_slave(:), in_master(:)
       real(wp), allocatable :: lsum(:), ltsum(:)
       integer(ip) :: i, p, q, e, n, m, nbad
-      integer :: k, j
-      integer(ip) :: ab(2)
+      integer :: k, j, ns
+      integer(ip) :: ab(2), abc(3)
       real(wp) :: l
       character(len=:), allocatable :: where
 
@@ -125,8 +153,8 @@ contains
             call check_facets(model, ms, surface_where(model, ms), error)
             if (allocated(error)) return
             do k = 1, size(ms%elem)
-               ab = side_nodes(model, ms%elem(k), ms%side(k))
-               in_master(ab) = .true.
+               call element_side(model, ms%elem(k), ms%side(k), abc, ns)
+               in_master(pack(abc, abc > 0)) = .true.
             end do
          end if
       end associate
@@ -139,7 +167,13 @@ contains
             if (allocated(error)) return
             do k = 1, size(surf%elem)
                e = surf%elem(k)
-               ab = side_nodes(model, e, surf%side(k))
+               call element_side(model, e, surf%side(k), abc, ns)
+               if (abc(3) /= 0) then
+                  in_slave(abc(1:2)) = .true.
+                  call add_quadratic_side(model, e, abc, in_slave, lsum, ltsum)
+                  cycle
+               end if
+               ab = abc(1:2)
                l = length2(model%x(:, ab(2)) - model%x(:, ab(1)))
                in_slave(ab) = .true.
                lsum(ab) = lsum(ab) + 0.5_wp*l
@@ -164,6 +198,11 @@ contains
                   p = surf%nodes(k)
                   do j = node_ptr(p), node_ptr(p + 1) - 1
                      e = node_elem(j)
+                     if (facet_order(model, e) == 2) then
+                        call add_quadratic_edges(model, node_ptr, node_elem, e, p, in_master, &
+                                                 in_slave, lsum, ltsum)
+                        cycle
+                     end if
                      q = next_in_element(model, e, p)
                      if (in_slave(q) .or. in_master(q)) &
                         call add_boundary_edge(model, node_ptr, node_elem, e, p, q, lsum, ltsum)
@@ -350,6 +389,56 @@ contains
       ltsum([a, b]) = ltsum([a, b]) + 0.5_wp*l*model%elem_thick(e)
    end subroutine add_boundary_edge
 
+   !> Side abc = (a, b, side node m) of second-order element e: m becomes a slave
+   !> node (the corners are the caller's business), l/6 of the side's length l = |m - a| + |b - m|
+   !> at each corner and 4l/6 at m (weighted by e's thickness in ltsum).
+   pure subroutine add_quadratic_side(model, e, abc, in_slave, lsum, ltsum)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: e, abc(3)
+      logical, intent(inout) :: in_slave(:)
+      real(wp), intent(inout) :: lsum(:), ltsum(:)
+      real(wp) :: l, w(3)
+      l = length2(model%x(:, abc(3)) - model%x(:, abc(1))) + length2(model%x(:, abc(2)) - model%x(:, abc(3)))
+      w = [1.0_wp, 1.0_wp, 4.0_wp]*(l/6.0_wp)
+      in_slave(abc(3)) = .true.
+      lsum(abc) = lsum(abc) + w
+      ltsum(abc) = ltsum(abc) + w*model%elem_thick(e)
+   end subroutine add_quadratic_side
+
+   !> Node surface, second-order element e at corner p of the set: the boundary
+   !> sides of e that start at p and end at a node of the set or of the master
+   !> surface, and those that end at p and start at a master node outside the set
+   !> (the rule of the first-order edges, so that each side is counted once),
+   !> each added by add_quadratic_side.
+   pure subroutine add_quadratic_edges(model, node_ptr, node_elem, e, p, in_master, in_slave, lsum, ltsum)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: node_ptr(:), node_elem(:), e, p
+      logical, intent(in) :: in_master(:)
+      logical, intent(inout) :: in_slave(:)
+      real(wp), intent(inout) :: lsum(:), ltsum(:)
+      integer(ip) :: abc(3)
+      integer :: k, ns
+      logical :: take
+      call element_side(model, e, 1, abc, ns)
+      do k = 1, ns
+         call element_side(model, e, k, abc, ns)
+         take = .false.
+         if (abc(1) == p) take = in_slave(abc(2)) .or. in_master(abc(2))
+         if (abc(2) == p) take = in_master(abc(1)) .and. .not. in_slave(abc(1))
+         if (.not. take) cycle
+         if (other_element(model, node_ptr, node_elem, e, abc(1), abc(2)) /= 0) cycle
+         call add_quadratic_side(model, e, abc, in_slave, lsum, ltsum)
+      end do
+   end subroutine add_quadratic_edges
+
+   !> Order of element e's sides: 2 when they carry a side node.
+   pure integer function facet_order(model, e)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: e
+      facet_order = 1
+      if (allocated(model%elem_type)) facet_order = element_order(model%elem_type(e))
+   end function facet_order
+
    !> The node before p in element e (counter-clockwise).
    pure integer(ip) function previous_in_element(model, e, p) result(q)
       type(model_t), intent(in) :: model
@@ -382,20 +471,19 @@ contains
       end do
    end function neighbour_in_element
 
-   !> An element other than e with a side joining p and q, 0 if there is none.
+   !> An element other than e with a side joining corners p and q, 0 if there is none.
    pure integer(ip) function other_element(model, node_ptr, node_elem, e, p, q) result(f)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: node_ptr(:), node_elem(:), e, p, q
-      integer(ip) :: j, p0, n, k, c1, c2
+      integer(ip) :: j, abc(3)
+      integer :: k, ns
       do j = node_ptr(p), node_ptr(p + 1) - 1
          f = node_elem(j)
          if (f == e) cycle
-         p0 = model%elem_ptr(f)
-         n = model%elem_ptr(f + 1) - p0
-         do k = 0, n - 1
-            c1 = model%elem_conn(p0 + k)
-            c2 = model%elem_conn(p0 + mod(k + 1, n))
-            if ((c1 == p .and. c2 == q) .or. (c1 == q .and. c2 == p)) return
+         call element_side(model, f, 1, abc, ns)
+         do k = 1, ns
+            call element_side(model, f, k, abc, ns)
+            if ((abc(1) == p .and. abc(2) == q) .or. (abc(1) == q .and. abc(2) == p)) return
          end do
       end do
       f = 0

@@ -8,7 +8,7 @@ module vemcontact_driver_validate
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, append_message, err_input
    use vemcontact_model, only: model_t, location_string, string_t, find_set, plane_strain, form_fem, &
-                               element_order, surface_element
+                               element_order, surface_element, pair_surface_to_surface
    use vemcontact_element_geometry, only: polygon_signed_area, polygon_diameter, polygon_defect, &
       polygon_max_angle, geom_rtol, defect_none, defect_coincident, defect_fold, defect_crossing
    use vemcontact_element_quad4, only: quad4_min_gauss_jacobian
@@ -122,9 +122,11 @@ contains
       if (nerr == 0) call check_contact_order(model, error)
    end subroutine validate_elements
 
-   !> Contact on second-order sides is not implemented: a surface of a contact
-   !> pair on a second-order element (or, for node surfaces, a node of one) is
-   !> refused with the surface's file:line.
+   !> SURFACE TO SURFACE contact on second-order sides is not implemented (its
+   !> node insertion would have to add side nodes to the k = 2 polygons): a
+   !> surface of such a pair on a second-order element (or, for node surfaces, a
+   !> node of one) is refused with the surface's file:line.  NODE TO SURFACE
+   !> pairs take second-order sides (vemcontact_contact_surfaces).
    subroutine check_contact_order(model, error)
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(inout) :: error
@@ -140,6 +142,7 @@ contains
             second_node(model%elem_conn(model%elem_ptr(e):model%elem_ptr(e + 1) - 1)) = .true.
       end do
       do k = 1, size(model%pairs)
+         if (model%pairs(k)%formulation /= pair_surface_to_surface) cycle
          do r = 1, 2
             isurf = model%pairs(k)%slave
             if (r == 2) isurf = model%pairs(k)%master
@@ -164,9 +167,10 @@ contains
                if (len_trim(id) > 0) then
                   if (s%kind == surface_element) id = 'element '//trim(id)
                   call append_message(error, location_string(model, s%loc)//': error: contact surface '// &
-                                      s%name//' is on a second-order element ('//trim(id)//'): contact on '// &
-                                      'sides with a middle node is not supported; use first-order elements '// &
-                                      '(VPE/VPS, CPE4/CPS4, CPE3/CPS3) along contact surfaces', err_input)
+                                      s%name//' is on a second-order element ('//trim(id)//'): TYPE=SURFACE TO SURFACE '// &
+                                      'contact on sides with a middle node is not supported; use TYPE=NODE TO '// &
+                                      'SURFACE, or first-order elements (VPE/VPS, CPE4/CPS4, CPE3/CPS3) along '// &
+                                      'the contact surfaces', err_input)
                   return
                end if
             end associate

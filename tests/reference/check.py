@@ -37,12 +37,15 @@ def cantilever(r):
     return abs(tip - 0.14568) < 1e-5, f"tip deflection ratio {tip:.5f} (unit test: 0.14568 at 2d/b = 1)"
 
 
-def hertz(r, tol):
-    """Example 2: peak pressure against p0 = 83.60, total force 100 (1 %)."""
+def hertz(r, tol, second_order=False):
+    """Example 2: peak pressure against p0 = 83.60, total force 100 (1 %).  The
+    force is the trapezoidal rule over the slave nodes; on second-order meshes,
+    whose side nodes have 4/6 of their side as tributary length, the sum of
+    CPRESS * CNAREA (the trapezoidal rule does not integrate those weights)."""
     c = r["steps"][1]["pairs"]["pair_1"]
     x, p = c["coordinates"][:, 0], c["CPRESS"]
     o = np.argsort(x)
-    force = np.trapz(p[o], x[o])
+    force = (p * c["CNAREA"]).sum() if second_order else np.trapz(p[o], x[o])
     err = p.max() / 83.60 - 1
     return abs(err) < tol and abs(force / 100 - 1) < 0.01, \
         f"peak pressure {p.max():.2f} ({err:+.2%} of 83.60, allowed {tol:.0%}), force {force:.2f}"
@@ -108,6 +111,13 @@ def check(path):
     if job.startswith("hertz_"):
         # 1 % on 1155 elements (test_contact.py::test_hertz_1155); the coarser meshes
         # are not held to a published accuracy: 5 % (they converge towards it)
+        # second order (hertz_329_*2): CPE8 within 1 % (test_second_order_contact.py);
+        # the k = 2 VEM disc, whose side nodes on the arc sit inside the circle
+        # (straight sides), is 9 % high (docs/contact-formulation.md): 10 %
+        if job.endswith("vem2"):
+            return hertz(r, 0.10, second_order=True)
+        if job.endswith("fem2"):
+            return hertz(r, 0.01, second_order=True)
         return hertz(r, 0.01 if "_1155_" in job else 0.05)
     if job.startswith("interface_"):
         # 5 % as test_inputs.py asks of the 200-cell mesh; 10 % on the coarsest (50 cells)

@@ -208,9 +208,6 @@ def build(scene, seed=None, verbose=False, processes=None):
     if elem_order not in (1, 2):
         raise MeshError(f"[mesh]: order must be 1 or 2, got {elem_order!r}")
     if elem_order == 2:
-        if scene.get("contact"):
-            raise MeshError("[mesh]: order = 2 with [[contact]]: contact on second-order sides is not "
-                            "supported by vemcontact")
         curved = [k for k, (_, et) in enumerate(m.bodies) if isinstance(et, FemType)]
         add_side_nodes(m, arcs, curved)
     size = diameter(m.nodes)
