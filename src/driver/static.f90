@@ -290,11 +290,7 @@ contains
                                      pack(tab%status, tab%pair == ip_), error, sel)
                if (allocated(error)) return
             end do
-            associate (rec => sys%records)
-               call h5%write_iterations(istep, rec%iteration, rec%active, rec%changed, rec%residual, &
-                                        rec%penetration, rec%pressure, rec%step, merge(1, 0, rec%factorized), &
-                                        rec%time, error)
-            end associate
+            call h5%write_iterations(istep, sys%records, error)
             if (allocated(error)) return
             write (buf, '(2x,a,i0,a,i0,a,es12.4,a,es12.4)') 'contact: ', count(contact%active), ' of ', contact%n, &
                ' slave nodes closed, max pressure ', contact%max_pressure(), ', max penetration ', &

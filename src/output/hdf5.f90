@@ -29,6 +29,7 @@ module vemcontact_output_hdf5
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
    use vemcontact_model, only: model_t, string_t
    use vemcontact_output_selection, only: field_selection_t
+   use vemcontact_contact_iteration, only: iteration_record_t
    use vemcontact_safe_file, only: create_temporary, publish_file, remove_file
    implicit none
    private
@@ -291,13 +292,13 @@ contains
    !> (closed slave entries), changed, residual (relative), max_penetration,
    !> max_pressure, step (line search), factorized (1: a numeric factorization was
    !> paid), time (wall seconds).  Call after write_contact of the step's pairs.
-   subroutine h5_write_iterations(self, istep, iteration, active, changed, residual, penetration, pressure, &
-                                  step, factorized, time, error)
+   subroutine h5_write_iterations(self, istep, records, error)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
-      integer, intent(in) :: iteration(:), active(:), changed(:), factorized(:)
-      real(wp), intent(in) :: residual(:), penetration(:), pressure(:), step(:), time(:)
+      type(iteration_record_t), intent(in) :: records(:)
       type(error_t), allocatable, intent(out) :: error
+      integer(ip), allocatable :: col(:)
+      real(wp), allocatable :: val(:)
       character(len=:), allocatable :: gname
       integer(hid_t) :: grp
       integer(hsize_t) :: dims(1)
@@ -308,16 +309,28 @@ contains
       gname = gname//'/iterations'
       call h5gcreate_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'creating group '//gname, error)) return
-      dims = size(iteration, kind=hsize_t)
-      call put_int(self, grp, 'iteration', dims, int(iteration, ip), error)
-      if (.not. allocated(error)) call put_int(self, grp, 'active', dims, int(active, ip), error)
-      if (.not. allocated(error)) call put_int(self, grp, 'changed', dims, int(changed, ip), error)
-      if (.not. allocated(error)) call put_real(self, grp, 'residual', dims, residual, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'max_penetration', dims, penetration, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'max_pressure', dims, pressure, error)
-      if (.not. allocated(error)) call put_real(self, grp, 'step', dims, step, error)
-      if (.not. allocated(error)) call put_int(self, grp, 'factorized', dims, int(factorized, ip), error)
-      if (.not. allocated(error)) call put_real(self, grp, 'time', dims, time, error)
+      dims = size(records, kind=hsize_t)
+      ! each component copied into a contiguous array first: a component of an array
+      ! of records is strided, and the assumed-size arguments of put_real/put_int would
+      ! each take a temporary copy
+      col = records%iteration
+      call put_int(self, grp, 'iteration', dims, col, error)
+      col = records%active
+      if (.not. allocated(error)) call put_int(self, grp, 'active', dims, col, error)
+      col = records%changed
+      if (.not. allocated(error)) call put_int(self, grp, 'changed', dims, col, error)
+      col = merge(1, 0, records%factorized)
+      if (.not. allocated(error)) call put_int(self, grp, 'factorized', dims, col, error)
+      val = records%residual
+      if (.not. allocated(error)) call put_real(self, grp, 'residual', dims, val, error)
+      val = records%penetration
+      if (.not. allocated(error)) call put_real(self, grp, 'max_penetration', dims, val, error)
+      val = records%pressure
+      if (.not. allocated(error)) call put_real(self, grp, 'max_pressure', dims, val, error)
+      val = records%step
+      if (.not. allocated(error)) call put_real(self, grp, 'step', dims, val, error)
+      val = records%time
+      if (.not. allocated(error)) call put_real(self, grp, 'time', dims, val, error)
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
