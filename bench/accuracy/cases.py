@@ -16,8 +16,25 @@ import fields
 import meshes
 
 FAMILIES = ("vem-voronoi", "vem-quad", "fem-quad", "fem-tri")
-FORMULATION = {"vem-voronoi": "VEM", "vem-quad": "VEM", "fem-quad": "FEM", "fem-tri": "FEM"}
-SHAPE = {"vem-voronoi": "voronoi", "vem-quad": "quad", "fem-quad": "quad", "fem-tri": "tri"}
+# second-order families (issue 13): k = 2 VEM (VPE2/VPS2) on the same Voronoi cells and
+# quads, serendipity quads (CPE8/CPS8) and 6-node triangles (CPE6/CPS6); the meshes are
+# the mesher's `order = 2` ones (a node in the middle of every side)
+FAMILIES2 = ("vem2-voronoi", "vem2-quad", "fem-q8", "fem-t6")
+LINEAR_FAMILIES = FAMILIES + FAMILIES2
+FORMULATION = {"vem-voronoi": "VEM", "vem-quad": "VEM", "fem-quad": "FEM", "fem-tri": "FEM",
+               "vem2-voronoi": "VEM", "vem2-quad": "VEM", "fem-q8": "FEM", "fem-t6": "FEM"}
+SHAPE = {"vem-voronoi": "voronoi", "vem-quad": "quad", "fem-quad": "quad", "fem-tri": "tri",
+         "vem2-voronoi": "voronoi", "vem2-quad": "quad", "fem-q8": "quad", "fem-t6": "tri"}
+ORDER = {f: (2 if f in FAMILIES2 else 1) for f in FORMULATION}
+
+
+def _mesh_args(fam):
+    """Mesh-file tag suffix and the mesher's formulation/order for a family: first-order
+    meshes are VPE/VPS whatever the FEM/VEM choice (the section decides); second-order
+    FEM meshes are written as CPE8/CPE6 (the mesher's FEM types)."""
+    if ORDER[fam] == 1:
+        return "", "vem", 1
+    return ("_v2" if FORMULATION[fam] == "VEM" else "_f2"), FORMULATION[fam].lower(), 2
 
 # Contact formulations of the contact cases (Hertz, interface): a family "base+variant"
 # runs the base family's mesh with that formulation; the plain base family is the
@@ -74,24 +91,29 @@ def _boundary_nodes(m, pred):
 
 
 # ----------------------------------------------------------------- manufactured
-def manufactured(work, quick=False):
+def manufactured(work, quick=False, families=LINEAR_FAMILIES):
     case = fields.Manufactured()
     fields.check_exact(case)
     ns = [8, 16, 32, 64, 128, 256] if not quick else [8, 16, 32]
+    # second order: the quadratic field is in the discrete space (exact up to round-off
+    # on every mesh), so three coarse levels show it
+    ns2 = [4, 8, 16] if not quick else [4, 8]
     b = case.body_force()
     g, d = float(np.linalg.norm(b)), b / np.linalg.norm(b)
-    for fam in FAMILIES:
-        levels = list(ns)
+    for fam in families:
+        levels = list(ns if ORDER[fam] == 1 else ns2)
         if fam == "fem-tri" and not quick:
             levels.append(512)             # the cheapest element per unknown: one more level
+        sfx, mform, order = _mesh_args(fam)
         for n in levels:
             shape = SHAPE[fam]
             if shape == "voronoi":
-                mp = meshes.rectangle(work + "/meshes", f"ms_vor_{n * n}", (0, 0, 1, 1), "voronoi", n * n,
-                                      lloyd=20 if n <= 128 else 10)
+                mp = meshes.rectangle(work + "/meshes", f"ms_vor{sfx}_{n * n}", (0, 0, 1, 1), "voronoi", n * n,
+                                      lloyd=20 if n <= 128 else 10, formulation=mform, order=order)
                 desc = f"{n * n} Voronoi cells"
             else:
-                mp = meshes.rectangle(work + "/meshes", f"ms_{shape}_{n}", (0, 0, 1, 1), shape, (n, n))
+                mp = meshes.rectangle(work + "/meshes", f"ms_{shape}{sfx}_{n}", (0, 0, 1, 1), shape, (n, n),
+                                      formulation=mform, order=order)
                 desc = f"{n}x{n} {'quads' if shape == 'quad' else 'quads split in 2 triangles'}"
             m = meshes.read_inp(mp)
             deck = _header("manufactured quadratic solution", _rel_include(work + "/decks", mp),
@@ -105,18 +127,30 @@ def manufactured(work, quick=False):
                 lines += [f"{i}, 1, 1, {u[k, 0]!r}", f"{i}, 2, 2, {u[k, 1]!r}"]
             deck += "\n".join(lines) + f"\n*STEP\n*STATIC\n*DLOAD\nB, GRAV, {g!r}, {d[0]!r}, {d[1]!r}\n*END STEP\n"
 
-            def metrics(res, case=case):
-                return dict(energy=fields.energy_error(res, case), u_l2=fields.u_l2_error(res, case))
+            def metrics(res, case=case, order=order):
+                return dict(energy=fields.energy_error(res, case, order), u_l2=fields.u_l2_error(res, case, order))
             yield Run("manufactured", fam, n, desc, deck, metrics, len(m.elems))
 
 
 # ----------------------------------------------------------------- Timoshenko
-def _edge_forces(ys, traction):
+def _edge_forces(ys, traction, order=1):
     """Consistent nodal forces of a traction t(y) on the edge nodes at heights ys
-    (sorted): int t N_i dy with linear N_i, by 3-point Gauss (exact for t quadratic)."""
+    (sorted): int t N_i dy with linear N_i, by 3-point Gauss (exact for t quadratic).
+    order 2: the nodes alternate corner, side middle, corner (each side has its middle
+    node) and N_i are the quadratic shape functions of a side (3-point Gauss is exact
+    for degree 5 >= 2 + 2)."""
     gp = np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
     gw = np.array([5, 8, 5]) / 9
     f = np.zeros(len(ys))
+    if order == 2:
+        for k in range(0, len(ys) - 2, 2):
+            y0, y1 = ys[k], ys[k + 2]
+            h = y1 - y0
+            s = (gp + 1) / 2
+            t = traction(y0 + s * h)
+            for j, N in enumerate(((1 - s) * (1 - 2 * s), 4 * s * (1 - s), s * (2 * s - 1))):
+                f[k + j] += (gw * t * N).sum() * h / 2
+        return f
     for k in range(len(ys) - 1):
         y0, y1 = ys[k], ys[k + 1]
         h = y1 - y0
@@ -127,25 +161,29 @@ def _edge_forces(ys, traction):
     return f
 
 
-def timoshenko(work, quick=False):
+def timoshenko(work, quick=False, families=LINEAR_FAMILIES):
     case = fields.Timoshenko()
     fields.check_exact(case, pts=[(5.0, 1.0), (20.0, -3.0), (40.0, 4.5)])
     ks = [2, 4, 8, 16, 32, 64] if not quick else [2, 4, 8]    # ny = k, nx = 4k
+    ks2 = [1, 2, 4, 8, 16, 32] if not quick else [1, 2, 4]
     L, D = case.L, case.D
-    for fam in FAMILIES:
-        levels = list(ks)
+    for fam in families:
+        levels = list(ks if ORDER[fam] == 1 else ks2)
         if fam == "fem-tri" and not quick:
             levels.append(128)
+        sfx, mform, order = _mesh_args(fam)
         for k in levels:
             shape = SHAPE[fam]
             box = (0.0, -D / 2, L, D / 2)
             if shape == "voronoi":
                 cells = 4 * k * k
-                mp = meshes.rectangle(work + "/meshes", f"tc_vor_{cells}", box, "voronoi", cells, plane="stress",
-                                      lloyd=20 if cells <= 20000 else 10)
+                mp = meshes.rectangle(work + "/meshes", f"tc_vor{sfx}_{cells}", box, "voronoi", cells,
+                                      plane="stress", lloyd=20 if cells <= 20000 else 10,
+                                      formulation=mform, order=order)
                 desc = f"{cells} Voronoi cells"
             else:
-                mp = meshes.rectangle(work + "/meshes", f"tc_{shape}_{k}", box, shape, (4 * k, k), plane="stress")
+                mp = meshes.rectangle(work + "/meshes", f"tc_{shape}{sfx}_{k}", box, shape, (4 * k, k),
+                                      plane="stress", formulation=mform, order=order)
                 desc = f"{4 * k}x{k} {'quads' if shape == 'quad' else 'quads split in 2 triangles'}"
             m = meshes.read_inp(mp)
             deck = _header("Timoshenko cantilever, parabolic end shear", _rel_include(work + "/decks", mp),
@@ -155,7 +193,7 @@ def timoshenko(work, quick=False):
             tip = [i for i in _boundary_nodes(m, lambda x, y: x > L - tol)]
             tip.sort(key=lambda i: m.xy[m.index[i], 1])
             ys = np.array([m.xy[m.index[i], 1] for i in tip])
-            f = _edge_forces(ys, lambda y: case.P / (2 * case.I) * (D * D / 4 - y * y))
+            f = _edge_forces(ys, lambda y: case.P / (2 * case.I) * (D * D / 4 - y * y), order)
             u = case.u(m.xy[:, 0], m.xy[:, 1])
             lines = ["*BOUNDARY"]
             for i in clamp:
@@ -165,36 +203,39 @@ def timoshenko(work, quick=False):
             lines += [f"{i}, 2, {fi!r}" for i, fi in zip(tip, f) if fi != 0.0]
             deck += "\n".join(lines) + "\n*END STEP\n"
 
-            def metrics(res, case=case, tipy=ys, L=L):
+            def metrics(res, case=case, tipy=ys, L=L, order=order):
                 x = res["x"]
                 on = np.abs(x[:, 0] - L) < 1e-9 * L
-                order = np.argsort(x[on, 1])
-                uy = np.interp(0.0, x[on, 1][order], res["U"][on, 1][order])
+                srt = np.argsort(x[on, 1])
+                uy = np.interp(0.0, x[on, 1][srt], res["U"][on, 1][srt])
                 return dict(tip=abs(uy - case.tip()) / abs(case.tip()),
-                            energy=fields.energy_error(res, case), u_l2=fields.u_l2_error(res, case))
+                            energy=fields.energy_error(res, case, order), u_l2=fields.u_l2_error(res, case, order))
             yield Run("timoshenko", fam, k, desc, deck, metrics, len(m.elems))
 
 
 # ----------------------------------------------------------------- Lame
-def lame(work, quick=False):
+def lame(work, quick=False, families=LINEAR_FAMILIES):
     case = fields.Lame()
     fields.check_exact(case, pts=[(1.2, 0.3), (0.5, 1.5), (1.0, 1.0)])
     nrs = [4, 8, 16, 32, 64, 128] if not quick else [4, 8, 16]
+    nrs2 = [2, 4, 8, 16, 32] if not quick else [2, 4, 8]
     a, b = case.a, case.b
-    for fam in FAMILIES:
-        levels = list(nrs)
+    for fam in families:
+        levels = list(nrs if ORDER[fam] == 1 else nrs2)
         if fam == "fem-tri" and not quick:
             levels.append(256)
+        sfx, mform, order = _mesh_args(fam)
         for nr in levels:
             shape = SHAPE[fam]
             nt = int(round(math.pi / 2 * (a + b) / 2 * nr / (b - a)))      # square cells at mid radius
             if shape == "voronoi":
                 cells = nr * nt
-                mp = meshes.annulus_voronoi(work + "/meshes", f"lc_vor_{cells}", a, b, cells,
-                                            lloyd=20 if cells <= 20000 else 10)
+                mp = meshes.annulus_voronoi(work + "/meshes", f"lc_vor{sfx}_{cells}", a, b, cells,
+                                            lloyd=20 if cells <= 20000 else 10, formulation=mform, order=order)
                 desc = f"{cells} Voronoi cells"
             else:
-                mp = meshes.annulus_polar(work + "/meshes", f"lc_{shape}_{nr}", a, b, nr, nt, shape)
+                mp = meshes.annulus_polar(work + "/meshes", f"lc_{shape}{sfx}_{nr}", a, b, nr, nt, shape,
+                                          formulation=mform, order=order)
                 desc = f"{nr}x{nt} {'quads' if shape == 'quad' else 'quads split in 2 triangles'} (r x theta)"
             m = meshes.read_inp(mp)
             deck = _header("Lame thick cylinder, internal pressure", _rel_include(work + "/decks", mp),
@@ -204,8 +245,9 @@ def lame(work, quick=False):
             # sides on the inner boundary: boundary sides (in one element only) whose
             # midpoint is nearer the bore than the outer arc, not on the symmetry lines
             # (Voronoi cells split the polygon's chords, so their nodes need not be on r = a)
+            corners = [(e, c[:len(c) // order]) for e, c in m.elems]     # second order: corners first
             count = {}
-            for e, c in m.elems:
+            for e, c in corners:
                 for s in range(len(c)):
                     key = frozenset((c[s], c[(s + 1) % len(c)]))
                     count[key] = count.get(key, 0) + 1
@@ -213,7 +255,7 @@ def lame(work, quick=False):
             lines += [f"{i}, 1" for i in _boundary_nodes(m, lambda x, y: abs(x) < tol)]
             lines += [f"{i}, 2" for i in _boundary_nodes(m, lambda x, y: abs(y) < tol)]
             lines += ["*STEP", "*STATIC", "*DLOAD"]
-            for e, c in m.elems:
+            for e, c in corners:
                 for s in range(len(c)):
                     n1, n2 = c[s], c[(s + 1) % len(c)]
                     if count[frozenset((n1, n2))] != 1:
@@ -225,7 +267,7 @@ def lame(work, quick=False):
                         lines.append(f"{e}, P{s + 1}, {case.p!r}")
             deck += "\n".join(lines) + "\n*END STEP\n"
 
-            def metrics(res, case=case):
+            def metrics(res, case=case, order=order):
                 x = res["x"]
                 rr = np.hypot(x[:, 0], x[:, 1])
                 at = np.abs(rr - case.a) < 1e-9
@@ -234,10 +276,10 @@ def lame(work, quick=False):
                 stt = Sn[:, 0] * s * s + Sn[:, 1] * c * c - 2 * Sn[:, 3] * s * c
                 ex = case.polar_stress(case.a)[1]
                 ur = res["U"][:, 0] * x[:, 0] / rr + res["U"][:, 1] * x[:, 1] / rr
-                w = fields.nodal_weights(res)
+                w = fields.nodal_weights(res, order)
                 ure = case.ur(rr)
                 return dict(u_l2=math.sqrt((w * (ur - ure) ** 2).sum() / (w * ure ** 2).sum()),
-                            energy=fields.energy_error(res, case),
+                            energy=fields.energy_error(res, case, order),
                             hoop=float(np.abs(stt - ex).mean() / ex))
             yield Run("lame", fam, nr, desc, deck, metrics, len(m.elems))
 
@@ -248,7 +290,7 @@ HERTZ_FAMILIES = ("vem-quad", "vem-quad+nts-hard", "vem-quad+s2s-hard", "fem-qua
 HERTZ_SCENE = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex2_hertz.toml")).read().split("[[variant]]")[0]
 
 
-def hertz(work, quick=False):
+def hertz(work, quick=False, families=HERTZ_FAMILIES):
     """The paper's Hertz half model (inputs/hertz_*: materials, K = 1e5, load 100 at the
     top) on its mesh family (postprocess/scenes/ex2_hertz.toml, same gradings): the
     paper's 389, 600 and 1155-element meshes, then the divisions of the 600-element mesh
@@ -261,7 +303,7 @@ def hertz(work, quick=False):
     if quick:
         levels = levels[:3]
     deck_text = open(os.path.join(meshes.ROOT, "inputs/hertz_1155_vem.inp")).read()
-    for fam in HERTZ_FAMILIES:
+    for fam in families:
         base, variant = split_family(fam)
         shape = SHAPE[base]
         for name, dd, bd in levels:
@@ -306,7 +348,7 @@ def interface_exact(hard=False):
     return IF_D / (2 / Ep + (0.0 if hard else 1 / IF_K))
 
 
-def interface(work, quick=False):
+def interface(work, quick=False, families=IF_FAMILIES):
     """The paper's interface (inputs/interface_*: two blocks [0,4]x[0,1] and [0,4]x[1,2]
     meshed independently, E = 1e9, nu = 0.3, K = 1e12, top moved by -0.1) with rollers
     on the sides (u_x = 0 on LEFT and RIGHT) so that the answer is known: a uniform
@@ -314,7 +356,7 @@ def interface(work, quick=False):
     and leave the sides free, which has end effects and no closed form."""
     scene = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex3_interface.toml")).read().split("[[variant]]")[0]
     ks = [1, 2, 4, 8, 16] if not quick else [1, 2]
-    for fam in IF_FAMILIES:
+    for fam in families:
         base, variant = split_family(fam)
         shape = SHAPE[base]
         p = interface_exact(hard=CONTACT_VARIANTS[variant][1] == "HARD")
@@ -362,5 +404,7 @@ def interface(work, quick=False):
             yield Run("interface", fam, k, desc, deck, metrics, len(m.elems))
 
 
+CASE_FAMILIES = {"manufactured": LINEAR_FAMILIES, "timoshenko": LINEAR_FAMILIES, "lame": LINEAR_FAMILIES,
+                 "hertz": HERTZ_FAMILIES, "interface": IF_FAMILIES}
 CASES = {"manufactured": manufactured, "timoshenko": timoshenko, "lame": lame, "hertz": hertz,
          "interface": interface}

@@ -133,6 +133,9 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="3 coarse levels, 2 repeats: a smoke test")
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--cases", default=",".join(cases.CASES))
+    ap.add_argument("--families", default="",
+                    help="run only these families (comma-separated); the case's other families keep their "
+                         "rows (from out/.../rows/<case>.json, else bench/results/accuracy.csv)")
     ap.add_argument("--work", default=os.path.join(ROOT, "out", "accuracy"))
     ap.add_argument("--no-doc", action="store_true", help="do not rewrite docs/ (with --quick: the default)")
     ap.add_argument("--report-only", action="store_true",
@@ -148,11 +151,14 @@ def main(argv=None):
     mach, load0 = machine()
     rowdir = os.path.join(work, "rows" + ("_quick" if args.quick else ""))
     os.makedirs(rowdir, exist_ok=True)
+    only = [f for f in args.families.split(",") if f]
     for cname in args.cases.split(","):
         print(f"== {cname}", flush=True)
         rows, timings, failed = [], [], set()
         t_case = time.time()
-        for run in cases.CASES[cname](work, quick=args.quick):
+        fams = [f for f in cases.CASE_FAMILIES[cname] if not only or f in only]
+        kept = kept_rows(rowdir, cname, fams, args.quick) if only else None
+        for run in cases.CASES[cname](work, quick=args.quick, families=fams):
             if run.family in failed:
                 continue
             job = f"{run.case}_{run.family}_{run.level}".replace(".", "_")
@@ -197,11 +203,20 @@ def main(argv=None):
                    if stats["iterations_total"] else "")
             print(f"  {run.family:20s} {str(run.level):>8s} {unk:>8d} unknowns  {row['time_s']:.4f} s  {mets}{its}",
                   flush=True)
+        source = (f"{time.strftime('%Y-%m-%d')}, vemcontact {source_state()}, load average "
+                  f"{load0:.2f} at its start, {os.getloadavg()[0]:.2f} at its end")
+        elapsed = time.time() - t_case
+        if kept is not None:
+            # the families not run keep their rows, in the case's family order
+            order = {f: k for k, f in enumerate(cases.CASE_FAMILIES[cname])}
+            rows = sorted(kept["rows"] + rows, key=lambda r: order.get(r["family"], len(order)))
+            timings = sorted(kept["timings"] + timings, key=lambda r: order.get(r["family"], len(order)))
+            elapsed += kept["elapsed"]
+            if kept["source"]:
+                source = f"{kept['source']}, and for {', '.join(fams)} {source}"
         with open(os.path.join(rowdir, cname + ".json"), "w") as f:
-            json.dump(dict(rows=rows, timings=timings, elapsed=time.time() - t_case, repeat=repeat,
-                           load=[load0, os.getloadavg()[0]],
-                           source=f"{time.strftime('%Y-%m-%d')}, vemcontact {source_state()}, load average "
-                                  f"{load0:.2f} at its start, {os.getloadavg()[0]:.2f} at its end"), f)
+            json.dump(dict(rows=rows, timings=timings, elapsed=elapsed, repeat=repeat,
+                           load=[load0, os.getloadavg()[0]], source=source), f)
     # every case run so far in this work folder (a --cases run replaces only its cases)
     rows, timings, elapsed, sources = [], [], {}, {}
     previous = None if args.quick else previous_results()
@@ -247,6 +262,25 @@ def main(argv=None):
     elif args.quick:
         report.write(rows, mach_load, total_elapsed, repeat, sources=sources, figdir=os.path.join(work, "figures"),
                      doc=os.path.join(work, "accuracy-vs-speed.md"))
+
+
+def kept_rows(rowdir, cname, fams, quick):
+    """Rows, timings, elapsed time and source of case `cname` for the families not in
+    `fams`: from this work folder's rows/<case>.json, else from the committed CSV."""
+    path = os.path.join(rowdir, cname + ".json")
+    if os.path.exists(path):
+        d = json.load(open(path))
+        rows, timings, src = d["rows"], d["timings"], d.get("source", "")
+    else:
+        prev = None if quick else previous_results()
+        if not prev:
+            return dict(rows=[], timings=[], elapsed=0.0, source="")
+        rows = [{k: v for k, v in r.items() if v != ""} for r in prev[0] if r["case"] == cname]
+        timings = [t for t in prev[1] if t["case"] == cname]
+        src = prev[2].get(cname, prev[2]["default"])
+    rows = [r for r in rows if r["family"] not in fams]
+    timings = [t for t in timings if t["family"] not in fams]
+    return dict(rows=rows, timings=timings, elapsed=sum(float(t["wall_s"]) for t in timings), source=src)
 
 
 def previous_results():

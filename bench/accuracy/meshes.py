@@ -77,21 +77,23 @@ def mesher(toml_text, name, workdir, seed=None):
     return out
 
 
-def rectangle(workdir, tag, box, shape, n, plane="strain", lloyd=20):
+def rectangle(workdir, tag, box, shape, n, plane="strain", lloyd=20, formulation="vem", order=1):
     """A rectangle body B: shape 'quad'/'tri' with divisions n = (nx, ny), or
-    'voronoi' with n = number of cells.  Written as VPE/VPS (the section decides VEM/FEM)."""
+    'voronoi' with n = number of cells.  Written as VPE/VPS (the section decides VEM/FEM);
+    order 2: the mesher's second-order mesh (VPE2/VPS2, or CPE8/CPE6 with formulation 'fem')."""
     x0, y0, x1, y1 = box
     if shape == "voronoi":
         body = f'mesher = "voronoi"\ncells = {int(n)}\n'
     else:
         body = f'mesher = "{shape}"\ndivisions = [{n[0]}, {n[1]}]\n'
-    text = (f'[mesh]\nseed = 7\nlloyd = {lloyd}\nformulation = "vem"\nplane = "{plane}"\n'
+    text = (f'[mesh]\nseed = 7\nlloyd = {lloyd}\nformulation = "{formulation}"\nplane = "{plane}"\n'
+            + (f'order = {order}\n' if order != 1 else '') +
             f'title = "accuracy study {tag}"\n\n[[body]]\nname = "B"\n'
             f'rectangle = [{x0!r}, {y0!r}, {x1!r}, {y1!r}]\n' + body)
     return mesher(text, tag, workdir)
 
 
-def annulus_voronoi(workdir, tag, a, b, cells, lloyd=20):
+def annulus_voronoi(workdir, tag, a, b, cells, lloyd=20, formulation="vem", order=1):
     """Quarter annulus a <= r <= b, x, y >= 0, as a polygon whose arcs have about one
     vertex per cell size (the mesher keeps polygon vertices as nodes)."""
     h = math.sqrt(math.pi / 4 * (b * b - a * a) / cells)
@@ -105,15 +107,19 @@ def annulus_voronoi(workdir, tag, a, b, cells, lloyd=20):
     pts[0] = (b, 0.0)
     pts[-1] = (a, 0.0)
     poly = ", ".join(f"[{x!r}, {y!r}]" for x, y in pts)
-    text = (f'[mesh]\nseed = 7\nlloyd = {lloyd}\nformulation = "vem"\nplane = "strain"\n'
+    text = (f'[mesh]\nseed = 7\nlloyd = {lloyd}\nformulation = "{formulation}"\nplane = "strain"\n'
+            + (f'order = {order}\n' if order != 1 else '') +
             f'title = "accuracy study {tag}"\n\n[[body]]\nname = "B"\npolygon = [{poly}]\n'
             f'mesher = "voronoi"\ncells = {int(cells)}\n')
     return mesher(text, tag, workdir)
 
 
-def annulus_polar(workdir, tag, a, b, nr, nt, shape):
+def annulus_polar(workdir, tag, a, b, nr, nt, shape, formulation="vem", order=1):
     """Polar grid of the quarter annulus: nr radial by nt angular cells, nodes exactly on
-    the arcs; 'tri' splits each quad with alternating diagonals (as the mesher does)."""
+    the arcs; 'tri' splits each quad with alternating diagonals (as the mesher does).
+    order 2: a node on every side, shared by its two cells, after the corners (Abaqus
+    order); VEM (VPE2) needs it in the middle of the straight side; FEM (CPE8/CPE6) has
+    it on the arc for the sides along a circle (isoparametric, as the mesher does)."""
     out = os.path.join(workdir, tag + ".inp")
     if os.path.exists(out):
         return out
@@ -135,12 +141,33 @@ def annulus_polar(workdir, tag, a, b, nr, nt, shape):
                 cells += [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
             else:
                 cells += [[q[0], q[1], q[3]], [q[1], q[2], q[3]]]
+    xs, ys = list(x.ravel()), list(y.ravel())
+    etype = "VPE"
+    if order == 2:
+        side = {}
+        for c in cells:
+            mids = []
+            for s in range(len(c)):
+                i, j = c[s], c[(s + 1) % len(c)]
+                key = (min(i, j), max(i, j))
+                if key not in side:
+                    px, py = (xs[i - 1] + xs[j - 1]) / 2, (ys[i - 1] + ys[j - 1]) / 2
+                    ri, rj = math.hypot(xs[i - 1], ys[i - 1]), math.hypot(xs[j - 1], ys[j - 1])
+                    if formulation == "fem" and abs(ri - rj) < 1e-12 * b:       # a side along an arc
+                        t = math.atan2(py, px)
+                        px, py = ri * math.cos(t), ri * math.sin(t)
+                    xs.append(px)
+                    ys.append(py)
+                    side[key] = len(xs)
+                mids.append(side[key])
+            c += mids
+        etype = "VPE2" if formulation == "vem" else ("CPE8" if shape == "quad" else "CPE6")
     with open(out, "w") as f:
-        f.write(f"** polar grid of the quarter annulus {a} <= r <= {b}: {nr} x {nt} {shape}\n")
+        f.write(f"** polar grid of the quarter annulus {a} <= r <= {b}: {nr} x {nt} {shape}, order {order}\n")
         f.write("*NODE, NSET=NALL\n")
-        for k, (xx, yy) in enumerate(zip(x.ravel(), y.ravel())):
+        for k, (xx, yy) in enumerate(zip(xs, ys)):
             f.write(f"{k + 1}, {xx!r}, {yy!r}\n")
-        f.write("*ELEMENT, TYPE=VPE, ELSET=B\n")
+        f.write(f"*ELEMENT, TYPE={etype}, ELSET=B\n")
         for e, c in enumerate(cells):
             f.write(f"{e + 1}, " + ", ".join(map(str, c)) + "\n")
     return out

@@ -36,7 +36,7 @@ def true_energy_error(res, case):
 def _runs(tmp_path, exe, name, family, levels):
     work = str(tmp_path)
     os.makedirs(work + "/decks", exist_ok=True)
-    for run in cases.CASES[name](work, quick=True):
+    for run in cases.CASES[name](work, quick=True, families=(family,)):
         if run.family != family or run.level not in levels:
             continue
         deck = f"{work}/decks/{name}_{family}_{run.level}.inp"
