@@ -15,6 +15,9 @@
 #     VC_BUILD       an existing Release build directory  (default: scripts/build.sh Release, build/)
 #     MIN_FREE_GB    wait (up to 10 min) for this much available memory before a run
 #                    of 1e6 unknowns or more (default 14; the 4e6 runs peak at ~10 GB)
+#     MESH_ORDER     2: the linear runs on second-order Voronoi meshes (k = 2 VEM, VPE2;
+#                    the mesher's `order = 2`, about 10 unknowns per cell), written to
+#                    bench/results/performance_linear_k2.csv (default 1)
 #
 # Meshes come from the Voronoi mesher (vctools.mesh, 10 Lloyd iterations, seed 1);
 # the mesher's wall time is the "mesh" phase.  Linear: the unit square, plane
@@ -42,7 +45,9 @@ min_free=${MIN_FREE_GB:-14}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p bench/results
+mesh_order=${MESH_ORDER:-1}
 lcsv=bench/results/performance_linear.csv
+[ "$mesh_order" = 2 ] && lcsv=bench/results/performance_linear_k2.csv
 ccsv=bench/results/performance_contact.csv
 
 num() { awk -v x="$1" 'BEGIN{printf "%d", x + 0}'; }
@@ -103,8 +108,9 @@ linear() {
   machine_note >> "$lcsv"
   for s in $linear_sizes; do
     local n; n=$(num "$s"); local cells=$((n / 4))
+    [ "$mesh_order" = 2 ] && cells=$((n / 10))
     [ "$n" -ge 1000000 ] && wait_mem
-    { printf '[mesh]\ntitle = "performance: unit square, %s cells"\nseed = 1\nlloyd = 10\n\n' $cells
+    { printf '[mesh]\ntitle = "performance: unit square, %s cells"\nseed = 1\nlloyd = 10\norder = %s\n\n' $cells "$mesh_order"
       body SQUARE 0.0 0.0 1.0 1.0 $cells
       printf '[[selection]]\nname = "BOTTOM"\ny = 0.0\n'; } > "$work/lin.toml"
     mesh "$work/lin.toml" "$work/lin_mesh.inp"
