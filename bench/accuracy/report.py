@@ -288,7 +288,9 @@ Voronoi with n^2 cells. On the uniform structured meshes all three structured fa
 reproduce this quadratic field *exactly at the nodes* (the discrete equations of a
 uniform grid are exact for quadratics, a known superconvergence; "round-off" in the
 table), so their nodal error says nothing there; on Voronoi meshes it converges at
-O(h^2). The energy error is then only the error of the element-constant stress.""",
+O(h^2). The energy error is then only the error of the element-constant stress.
+The second-order spaces (k = 2 VEM, Q8, T6) contain this field, so they reproduce it to
+round-off on every mesh (a patch test, not a convergence study; three coarse levels).""",
     "timoshenko": """\
 **Set-up.** Cantilever [0, 48] × [-6, 6], plane stress, E = 3e7, nu = 0.3, end shear
 P = 1000 (Timoshenko & Goodier; the form of Augarde & Deeks 2008):
@@ -296,7 +298,8 @@ sigma_xx = -P (L - x) y / I, tau_xy = P/(2I)(D^2/4 - y^2),
 u_x = -P y/(6EI) [(6L - 3x) x + (2 + nu)(y^2 - D^2/4)],
 u_y = P/(6EI) [3 nu y^2 (L - x) + (4 + 5nu) D^2 x/4 + (3L - x) x^2].
 The parabolic traction at x = L is applied as consistent nodal forces (`*CLOAD` per
-node: the traction integrated against the linear edge shape functions, exactly); the
+node: the traction integrated against the linear edge shape functions, exactly; for
+the second-order families against the quadratic ones of each side); the
 exact displacements are prescribed at every node of x = 0 (so the fixity is that of the
 formula). Tip deflection u_y(L, 0) = 0.0089 (interpolated linearly along x = L for
 Voronoi meshes, which have no node at y = 0). Meshes: 4k × k quads (aspect 1), Voronoi
@@ -436,7 +439,8 @@ def write(rows, machine, elapsed, repeat, figdir=None, doc=None, sources=None):
     parts = [f"""# Accuracy against cost
 
 How accurate is each discretization for the work it costs? Five cases with known
-answers, four families, mesh sequences from coarse to about 10^5 to 5·10^5 unknowns;
+answers, four first-order families (and four second-order ones in the three smooth
+cases), mesh sequences from coarse to about 10^5 to 5·10^5 unknowns;
 the two contact cases (Hertz, interface) compare three contact formulations as well
 (node to surface with penalty or HARD, surface to surface with HARD; see their sections
 and the robustness table at the end):
@@ -626,15 +630,15 @@ SUMMARY_TEMPLATE = """\
   unknowns, well under 0.1 s). Cost per unknown is the same for all families (same
   sparse Cholesky), so fewer unknowns is less time, up to the noise of small runs.
 - **Stresses in the energy norm** (the element stress the code reports, constant per
-  element) converge at O(h) for every family, with nearly the same constant at the same
+  element) converge at O(h) for every first-order family, with nearly the same constant at the same
   element size: 1 % needs 64 × 64 elements on the unit square of the manufactured case
   (about 10^4 unknowns, 0.1 s) and 64 elements radially in the Lamé cylinder, and more
   than 64 elements through the depth of the cantilever (1.6 % there);
   **0.1 % needs about 5·10^5 unknowns or more** and is reached in none of the smooth
   cases within the meshes run (FEM triangles at 512 × 512 on the unit square,
   5·10^5 unknowns and several seconds, come to 0.11 %). For
-  stress accuracy use the nodal (averaged) stress or refine locally; no family of this
-  code is cheaper than the others for stresses.
+  stress accuracy use a second-order element (above), the nodal (averaged) stress or
+  local refinement; no first-order family is cheaper than the others for stresses.
 - **VEM on Voronoi meshes** costs about 2 times the unknowns of quads for the same
   number of cells (a Voronoi mesh has about 2 nodes per cell, a quad mesh 1), with
   about the same error per cell. Per unknown it beats FEM quads and triangles for
