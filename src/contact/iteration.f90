@@ -346,12 +346,11 @@ contains
       subroutine direct_solve(x)
          real(wp), intent(inout) :: x(:)
          real(wp), allocatable :: dx(:)
-         real(wp) :: rel_x
          integer :: pass
          x = u0
          allocate (dx(size(x)))
          do pass = 1, 2
-            rel_x = frozen_residual(x)
+            call frozen_residual(x)
             dx = 0.0_wp
             t0s = wall_time()
             call sys%solve_system(r, dx, error)
@@ -361,18 +360,20 @@ contains
          end do
       end subroutine direct_solve
 
-      !> The relative residual of the frozen-pairing equilibrium at x (residual_norm),
-      !> leaving r = f_ext - K x - f_c(x) (zero on the fixed dofs) and f_c in fc.
-      real(wp) function frozen_residual(x) result(rel_x)
+      !> The residual of the frozen-pairing equilibrium at x, r = f_ext - K x - f_c(x)
+      !> (zero on the fixed dofs; f_c in fc), and its relative size rel_x (residual_norm).
+      subroutine frozen_residual(x, rel_x)
          real(wp), intent(in) :: x(:)
+         real(wp), intent(out), optional :: rel_x
          call sys%elastic_times(x, ku)
          fc = 0.0_wp
          call contact%linear_forces(x, fc)
          r = fext - ku - fc
          where (fixed) r = 0.0_wp
-         rel_x = residual_norm(r, x, merge(0.0_wp, fext, fixed), fc, kmax, &
-                               merge(maxval(contact%k, mask=contact%active, dim=1), 0.0_wp, any(contact%active)))
-      end function frozen_residual
+         if (present(rel_x)) rel_x = residual_norm(r, x, merge(0.0_wp, fext, fixed), fc, kmax, &
+                                                   merge(maxval(contact%k, mask=contact%active, dim=1), 0.0_wp, &
+                                                         any(contact%active)))
+      end subroutine frozen_residual
 
       !> x = u0 + dx with J dx = r(u0), the tangent J of `op` (the frozen-pairing
       !> matrix, plus the sliding part for a Newton step), by GMRES preconditioned
@@ -386,7 +387,7 @@ contains
          type(gmres_result_t) :: res
          real(wp) :: rel0, tol_abs, floor_abs
          ok = .false.
-         rel0 = frozen_residual(u0)
+         call frozen_residual(u0, rel0)
          ! a millionth of the initial residual: an inexact Newton step that keeps the
          ! quadratic rate; a multiplier update of HARD late in the iteration starts
          ! from a residual near the round-off, and must still be applied in full.

@@ -285,18 +285,13 @@ contains
       real(wp), allocatable :: xy(:, :), ue(:), work(:), body(:, :), sn(:, :)
       real(wp) :: d(3, 3), sig(3)
       integer :: e, n, i, nmax
-      integer(ip) :: first, node
+      integer(ip) :: first
       nmax = max_element_nodes(model)
       allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)), sn(3, nmax))
       body = element_body_forces(model, dloads)
       do e = 1, model%nelem
          first = model%elem_ptr(e)
-         n = model%elem_ptr(e + 1) - first
-         do i = 1, n
-            node = model%elem_conn(first + i - 1)
-            xy(:, i) = model%x(:, node)
-            ue(2*i - 1:2*i) = u(2*node - 1:2*node)
-         end do
+         call gather_element(model, u, e, xy, ue, n)
          associate (mat => model%materials(model%elem_mat(e)))
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
             call element_stress(model%elem_form(e), xy(:, :n), d, ue(:2*n), work, sig, &
@@ -313,6 +308,24 @@ contains
          end associate
       end do
    end subroutine element_stresses
+
+   !> The coordinates xy(:, :n) and displacements ue(:2n) of the n nodes of element e,
+   !> into the caller's work arrays (sized for the largest element).
+   pure subroutine gather_element(model, u, e, xy, ue, n)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer, intent(in) :: e
+      real(wp), intent(inout) :: xy(:, :), ue(:)
+      integer, intent(out) :: n
+      integer :: i
+      integer(ip) :: node
+      n = int(model%elem_ptr(e + 1) - model%elem_ptr(e))
+      do i = 1, n
+         node = model%elem_conn(model%elem_ptr(e) + i - 1)
+         xy(:, i) = model%x(:, node)
+         ue(2*i - 1:2*i) = u(2*node - 1:2*node)
+      end do
+   end subroutine gather_element
 
    !> Body force per unit volume of every element (2, nelem): the sum of the
    !> GRAV loads among `dloads` (zero without them).
@@ -353,18 +366,13 @@ contains
                                                        0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
       real(wp) :: eps(3), d(3, 3), nu
       integer :: e, n, i, nmax, order
-      integer(ip) :: first, node
+      integer(ip) :: first
       nmax = max_element_nodes(model)
       allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)), en(3, nmax))
       body = element_body_forces(model, dloads)
       do e = 1, model%nelem
          first = model%elem_ptr(e)
-         n = model%elem_ptr(e + 1) - first
-         do i = 1, n
-            node = model%elem_conn(first + i - 1)
-            xy(:, i) = model%x(:, node)
-            ue(2*i - 1:2*i) = u(2*node - 1:2*node)
-         end do
+         call gather_element(model, u, e, xy, ue, n)
          order = element_order(model%elem_type(e))
          nu = model%materials(model%elem_mat(e))%poisson
          if (order == 2) then

@@ -190,7 +190,6 @@ contains
       real(wp), intent(in), optional :: energy        !< energy norm of the discrete stress
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
-      character(len=24) :: buf
       integer(hid_t) :: grp
       integer :: hdferr
 
@@ -214,12 +213,7 @@ contains
          call fatal_error(error, 'write_step: negative step index ('//self%path//')', err_internal)
          return
       end if
-      if (istep <= 9999) then
-         write (buf, '(i4.4)') istep
-      else
-         write (buf, '(i0)') istep
-      end if
-      gname = '/steps/'//trim(buf)
+      gname = step_group(istep)
       call h5gcreate_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'creating group '//gname, error)) return
       call put_string_attribute(self, grp, 'name', name, error)
@@ -402,7 +396,6 @@ contains
       type(field_selection_t), intent(in), optional :: sel
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
-      character(len=24) :: buf
       integer(hid_t) :: grp, sub
       integer :: hdferr
       logical :: bad
@@ -415,12 +408,7 @@ contains
                           self%path//')', err_internal)
          return
       end if
-      if (istep <= 9999) then
-         write (buf, '(i4.4)') istep
-      else
-         write (buf, '(i0)') istep
-      end if
-      gname = '/steps/'//trim(buf)
+      gname = step_group(istep)
       call h5gopen_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'opening group '//gname, error)) return
       if (w%e) call put_real(self, grp, 'E_element', shape(e_elem, hsize_t), e_elem, error)
@@ -446,21 +434,28 @@ contains
    end subroutine h5_write_results
 
    !> The name of /steps/NNNN/contact, created when it does not exist yet.
-   subroutine contact_group(self, istep, gname, error)
-      class(h5_writer_t), intent(inout) :: self
+   !> The group of step istep: /steps/NNNN (four digits, more when needed).
+   pure function step_group(istep) result(gname)
       integer, intent(in) :: istep
-      character(len=:), allocatable, intent(out) :: gname
-      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: gname
       character(len=24) :: buf
-      integer(hid_t) :: grp
-      integer :: hdferr
-      logical :: exists
       if (istep <= 9999) then
          write (buf, '(i4.4)') istep
       else
          write (buf, '(i0)') istep
       end if
-      gname = '/steps/'//trim(buf)//'/contact'
+      gname = '/steps/'//trim(buf)
+   end function step_group
+
+   subroutine contact_group(self, istep, gname, error)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep
+      character(len=:), allocatable, intent(out) :: gname
+      type(error_t), allocatable, intent(out) :: error
+      integer(hid_t) :: grp
+      integer :: hdferr
+      logical :: exists
+      gname = step_group(istep)//'/contact'
       call h5lexists_f(self%file, gname, exists, hdferr)
       if (failed(self, hdferr, 'looking up '//gname, error)) return
       if (.not. exists) then
@@ -477,20 +472,14 @@ contains
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
       type(error_t), allocatable, intent(out) :: error
-      character(len=24) :: buf
       integer :: hdferr
       logical :: exists
       if (.not. check_open(self, 'discard_step', error)) return
-      if (istep <= 9999) then
-         write (buf, '(i4.4)') istep
-      else
-         write (buf, '(i0)') istep
-      end if
-      call h5lexists_f(self%file, '/steps/'//trim(buf), exists, hdferr)
-      if (failed(self, hdferr, 'looking up /steps/'//trim(buf), error)) return
+      call h5lexists_f(self%file, step_group(istep), exists, hdferr)
+      if (failed(self, hdferr, 'looking up '//step_group(istep), error)) return
       if (.not. exists) return
-      call h5ldelete_f(self%file, '/steps/'//trim(buf), hdferr)
-      if (failed(self, hdferr, 'removing the incomplete /steps/'//trim(buf), error)) return
+      call h5ldelete_f(self%file, step_group(istep), hdferr)
+      if (failed(self, hdferr, 'removing the incomplete '//step_group(istep), error)) return
    end subroutine h5_discard_step
 
    !> Finish the file: root attribute `complete` (1 when `complete` is true: the
