@@ -344,59 +344,34 @@ contains
    end function element_body_forces
 
    !> Element strains E (total strain, Abaqus' E) `(xx, yy, zz, xy)` with the
-   !> engineering shear strain gamma_xy = 2 eps_xy, as Abaqus writes E12; the
-   !> same recovery as element_stresses, so that S = D E holds element by element.
-   !> First-order elements: every kernel's stress is d times its (projected, for
-   !> VEM; Gauss-averaged, for the quad) strain, so the kernel run with
-   !> d = identity returns that strain.  Second-order elements: the kernel run
-   !> with the element's D (the k = 2 virtual element's condensed cell moments
-   !> depend on D and on the body force in `dloads`), E = D^-1 S.
+   !> engineering shear strain gamma_xy = 2 eps_xy, as Abaqus writes E12, from the
+   !> stresses of element_stresses: every kernel's stress is D times its strain (the
+   !> projected one for the VEM, the Gauss-averaged one for the quad, the element's own
+   !> nodal values for second-order elements), so E = D^-1 S element by element, with
+   !> no second pass through the element kernels.
    !> zz: 0 in plane strain; in plane stress the thickness strain
    !> -nu/(1 - nu) (xx + yy) that makes S_zz zero.
-   !> `e_at` (optional, (4, size of elem_conn)): each element's strain at each of
-   !> its nodes, for nodal_average (as element_stresses' s_at).
-   subroutine element_strains(model, u, e_elem, dloads, e_at)
+   !> `s_at`, `e_at` (optional, (4, size of elem_conn)): each element's stress and
+   !> strain at each of its nodes (element_stresses' s_at), for nodal_average.
+   pure subroutine element_strains(model, s_elem, e_elem, s_at, e_at)
       type(model_t), intent(in) :: model
-      real(wp), intent(in) :: u(:)
+      real(wp), intent(in) :: s_elem(:, :)
       real(wp), intent(out) :: e_elem(:, :)
-      type(dload_t), intent(in), optional :: dloads(:)
+      real(wp), intent(in), optional :: s_at(:, :)
       real(wp), intent(out), optional :: e_at(:, :)
-      real(wp), allocatable :: xy(:, :), ue(:), work(:), body(:, :), en(:, :)
-      real(wp), parameter :: identity(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
-                                                       0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
-      real(wp) :: eps(3), d(3, 3), nu
-      integer :: e, n, i, nmax, order
-      integer(ip) :: first
-      nmax = max_element_nodes(model)
-      allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)), en(3, nmax))
-      body = element_body_forces(model, dloads)
+      real(wp) :: d(3, 3)
+      integer :: e
+      integer(ip) :: k
       do e = 1, model%nelem
-         first = model%elem_ptr(e)
-         call gather_element(model, u, e, xy, ue, n)
-         order = element_order(model%elem_type(e))
-         nu = model%materials(model%elem_mat(e))%poisson
-         if (order == 2) then
-            associate (mat => model%materials(model%elem_mat(e)))
-               call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
-            end associate
-            call element_stress(model%elem_form(e), xy(:, :n), d, ue(:2*n), work, eps, order, &
-                                model%elem_thick(e), stab(model, e), body(:, e), en(:, :n))
-            eps = strain_of(d, eps)
-            do i = 1, n
-               en(:, i) = strain_of(d, en(:, i))
-            end do
-         else
-            call element_stress(model%elem_form(e), xy(:, :n), identity, ue(:2*n), work, eps)
-            do i = 1, n
-               en(:, i) = eps
-            end do
-         end if
-         e_elem(:, e) = strain4(eps, nu, model%elem_plane(e))
-         if (present(e_at)) then
-            do i = 1, n
-               e_at(:, first + i - 1) = strain4(en(:, i), nu, model%elem_plane(e))
-            end do
-         end if
+         associate (mat => model%materials(model%elem_mat(e)))
+            call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
+            e_elem(:, e) = strain4(strain_of(d, s_elem([1, 2, 4], e)), mat%poisson, model%elem_plane(e))
+            if (present(s_at) .and. present(e_at)) then
+               do k = model%elem_ptr(e), model%elem_ptr(e + 1) - 1
+                  e_at(:, k) = strain4(strain_of(d, s_at([1, 2, 4], k)), mat%poisson, model%elem_plane(e))
+               end do
+            end if
+         end associate
       end do
    end subroutine element_strains
 

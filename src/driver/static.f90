@@ -212,17 +212,17 @@ contains
          t0 = wall_time()
          ! second-order elements give their own stress and strain at each node
          ! (linear for the k = 2 VEM), averaged at the nodes instead of the
-         ! element values; strains from the same recovery as the stresses
-         ! (S = D E element by element)
+         ! element values; strains E = D^-1 S from the same recovery
+         ! (element_strains)
          if (allocated(s_at)) then
             call element_stresses(model, u, s_elem, st%dload, s_at)
             call nodal_average(model, s_elem, s_node, s_at)
-            call element_strains(model, u, extra%e_elem, st%dload, e_at)
+            call element_strains(model, s_elem, extra%e_elem, s_at, e_at)
             call nodal_average(model, extra%e_elem, extra%e_node, e_at)
          else
             call element_stresses(model, u, s_elem, st%dload)
             call nodal_average(model, s_elem, s_node)
-            call element_strains(model, u, extra%e_elem, st%dload)
+            call element_strains(model, s_elem, extra%e_elem)
             call nodal_average(model, extra%e_elem, extra%e_node)
          end if
          ! the recovery-based error estimate (first-order elements only: the

@@ -216,7 +216,7 @@ contains
       ! strains E: the same recovery, exact at the nodes and as the element mean
       ! (engineering shear gamma_xy; zz the plane-stress thickness strain)
       allocate (e_elem(4, m%nelem), e_at(4, size(conn)))
-      call element_strains(m, u, e_elem, st%dload, e_at)
+      call element_strains(m, s_elem, e_elem, s_at, e_at)
       err = 0
       do i = 1, size(conn)
          eps = strain(x(:, conn(i)))
