@@ -231,7 +231,8 @@ E, GRAV, 0.01, 0.0, -1.0
 @pytest.mark.parametrize("text,msg", [
     (deck("VPE2").replace("2, 2, 3, 4, 5, 11, 12, 13, 8", "2, 2, 3, 4, 5, 11, 12, 13"),
      "needs an even number of nodes"),
-    (deck("VPE2").replace("11, 24, 0", "11, 24, 1"), "off the middle of side"),
+    (deck("VPE2").replace("11, 24, 0", "11, 30, 0"), "too far along side 2-3 from its middle"),
+    (deck("VPE2").replace("11, 24, 0", "11, 24, -20"), "too far off side 2-3"),
     (deck("VPE2").replace("*CLOAD", "*DLOAD\n1, P5, 1.0\n*CLOAD"), "has 4 sides, so there is no side P5"),
     (deck("VPE2").replace("*BOUNDARY", "*SURFACE, NAME=A\n1, S1\n*SURFACE, NAME=B\n2, S1\n"
                           "*SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"

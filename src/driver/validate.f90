@@ -12,7 +12,7 @@ module vemcontact_driver_validate
    use vemcontact_element_geometry, only: polygon_signed_area, polygon_diameter, polygon_defect, &
       polygon_max_angle, geom_rtol, defect_none, defect_coincident, defect_fold, defect_crossing
    use vemcontact_element_quad4, only: quad4_min_gauss_jacobian
-   use vemcontact_element_vem2, only: vem2_side_rtol
+   use vemcontact_element_vem2, only: vem2_side_tangent, vem2_side_bulge
    implicit none
    private
 
@@ -179,30 +179,39 @@ contains
    end subroutine check_contact_order
 
    !> '' when every side node of a second-order virtual element (corners
-   !> xy(:, 1:n/2), side nodes after them) sits at the middle of its side,
-   !> within vem2_side_rtol of the side's length; else what is wrong.
+   !> xy(:, 1:n/2), side nodes after them) is near enough the middle of its
+   !> side for the side's quadratic curve (vem2_side_tangent along the chord,
+   !> vem2_side_bulge across it, of the chord's length); else what is wrong.
    function side_node_defect(model, conn, xy) result(what)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: conn(:)
       real(wp), intent(in) :: xy(:, :)
       character(len=:), allocatable :: what
       integer :: i, nc, j
-      real(wp) :: off, len_side
+      real(wp) :: off(2), len_side, along, across
       character(len=24) :: a, b, c
       what = ''
       nc = size(xy, 2)/2
       do i = 1, nc
          j = mod(i, nc) + 1
          len_side = norm2(xy(:, j) - xy(:, i))
-         off = norm2(xy(:, nc + i) - 0.5_wp*(xy(:, i) + xy(:, j)))
-         if (off > vem2_side_rtol*len_side) then
+         off = xy(:, nc + i) - 0.5_wp*(xy(:, i) + xy(:, j))
+         along = abs(dot_product(off, xy(:, j) - xy(:, i)))/len_side**2
+         across = norm2(off)/len_side
+         if (along > vem2_side_tangent .or. across > vem2_side_bulge) then
             write (a, '(i0)') model%node_id(conn(nc + i))
             write (b, '(i0)') model%node_id(conn(i))
             write (c, '(i0)') model%node_id(conn(j))
-            what = 'has its side node '//trim(a)//' off the middle of side '//trim(b)//'-'//trim(c)// &
-                   ' (by '//real_text(off/len_side)//' of the side''s length): the second-order VEM '// &
-                   'has straight sides with the side node at the middle (nodes: the corners, then '// &
-                   'one node per side in order)'
+            if (along > vem2_side_tangent) then
+               what = 'has its side node '//trim(a)//' too far along side '//trim(b)//'-'//trim(c)// &
+                      ' from its middle (by '//real_text(along)//' of the side''s length, at most '// &
+                      real_text(vem2_side_tangent)//'): the side node of a second-order VEM side '// &
+                      'belongs near its middle (nodes: the corners, then one node per side in order)'
+            else
+               what = 'has its side node '//trim(a)//' too far off side '//trim(b)//'-'//trim(c)// &
+                      ' (by '//real_text(across)//' of the side''s length, at most '// &
+                      real_text(vem2_side_bulge)//'): the side curves more than a half circle'
+            end if
             return
          end if
       end do

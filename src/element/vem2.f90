@@ -1,22 +1,23 @@
 !> Second-order (k = 2) virtual element for 2D small-strain elasticity on a
-!> polygon with n >= 3 corners, straight sides, convex or not, collinear
-!> corners allowed; docs/vem-formulation.md has the derivation.
+!> polygon with n >= 3 corners, convex or not, collinear corners allowed, its
+!> sides straight or curved; docs/vem-formulation.md has the derivation.
 !>
 !> Nodes: the n corners counter-clockwise, then one node per side (side i runs
 !> from corner i to corner i+1, its node is node n+i), so 2n nodes, as in
-!> Abaqus' quadratic elements.  The side node is the middle point of the side:
-!> with the two corners it makes the 3-point Gauss-Lobatto rule of the side
-!> (Simpson), which integrates the product of the quadratic trace of u with a
-!> linear function exactly; the boundary integrals below are all of that kind.
-!> Degrees of freedom: u at the 2n nodes and the cell moments
-!> mu = (1/|E|) integral of u (2 components), numbered as a node 2n+1.
+!> Abaqus' quadratic elements.  Side i is the quadratic curve through its
+!> three nodes, x(t) = a L_a(t) + b L_b(t) + m L_m(t) for t in [0, 1], with
+!> L_a, L_b, L_m the Lagrange quadratics of t = 0, 1, 1/2 (the side of the
+!> isoparametric 8-node quad); a side node at the middle of its corners gives
+!> the straight side.  On each side the trace of u is quadratic in t (the
+!> curved-edge space of Beirao da Veiga, Russo, Vacca 2019): u at the corners
+!> and at the side node (t = 1/2) fix it.  Degrees of freedom: u at the 2n
+!> nodes and the cell moments mu = (1/|E|) integral of u (2 components),
+!> numbered as a node 2n+1.
 !>
 !> Consistency: the L2 projection of the strain onto linear symmetric tensors,
 !>   integral eps(u) : tau = - integral u . div tau + boundary integral u . tau n,
-!> computable for every linear tau (div tau is constant: the cell moment;
-!> the boundary term: Simpson).  Kc = t integral Pi(eps)^T D Pi(eps) is then
-!> exact for quadratic u and a_h(p, v) = a(p, v) for every quadratic p, the
-!> patch test.
+!> computable for every linear tau (div tau is constant: the cell moment; the
+!> boundary term: along each side's parametrization, n ds = (y'(t), -x'(t)) dt).
 !> Stabilisation: (I - Pi)^T S (I - Pi) per component, with Pi the H1
 !> projection of each component onto quadratics (mean fixed by the cell
 !> moment) and S diagonal: the D-recipe of the k = 1 element (vem_tau,
@@ -25,14 +26,20 @@
 !> The cell moments are condensed statically: the kernels return the 4n x 4n
 !> stiffness of the node dofs, the nodal forces of a unit body force
 !> (vem2_body_load) and recover the moments for the stress (vem2_stress).
-!> Polygon integrals of polynomials come from the divergence theorem (exact
-!> for any simple polygon), with 3-point Gauss on each side.
+!> Every integral is a boundary integral along the sides' parametrizations
+!> (the cell's area, centroid and polynomial moments by the divergence
+!> theorem), with the 4-point Gauss rule in t, exact for polynomials of degree
+!> 7 in t: the integrands have degree <= 7 on a curved side and <= 3 on a
+!> straight one, so every integral is exact and a straight-sided element is the
+!> straight-sided k = 2 element (Simpson on each side) to round-off.
+!> On straight sides the space contains the quadratics (patch test exact for a
+!> quadratic field); on curved sides it contains the linear fields (rigid
+!> motions and constant strain exact), not the quadratics.
 !>
 !> Kernels are pure, take a work array of vem2_workspace_size(2n) reals and
 !> allocate nothing.
 module vemcontact_element_vem2
    use vemcontact_kinds, only: wp
-   use vemcontact_element_geometry, only: polygon_signed_area, polygon_centroid
    use vemcontact_element_vem, only: vem_tau, vem_floor, vem_lambda_cap
    implicit none
    private
@@ -42,16 +49,22 @@ module vemcontact_element_vem2
    !> info codes (1 is the bad area of every element kernel)
    integer, parameter, public :: vem2_bad_area = 1
    integer, parameter, public :: vem2_bad_nodes = 4      !< odd node count or fewer than 6 nodes
-   integer, parameter, public :: vem2_bad_side_node = 5  !< a side node off the middle of its side
+   integer, parameter, public :: vem2_bad_side_node = 5  !< a side node too far from the middle of its side
    integer, parameter, public :: vem2_singular = 6       !< projection or condensation failed
-   !> A side node may be off the middle of its side by this fraction of the
-   !> side's length: decks carry rounded coordinates, while a node visibly off
-   !> the middle is an error (the element places its dof at the middle).
-   real(wp), parameter, public :: vem2_side_rtol = 1.0e-3_wp
+   !> Limits on where a side node may sit, with d = m - (a + b)/2 its offset
+   !> from the middle of the chord a -> b of length l: along the chord,
+   !> |d . (b - a)| <= vem2_side_tangent l^2 (the speed |x'(t)| of the side's
+   !> parametrization then varies by at most a factor 3; at l^2/4 it vanishes and
+   !> the side folds); across it, |d| <= vem2_side_bulge l (a half circle at most).
+   real(wp), parameter, public :: vem2_side_tangent = 0.125_wp
+   real(wp), parameter, public :: vem2_side_bulge = 0.5_wp
 
-   ! 3-point Gauss-Legendre rule on [0, 1]
-   real(wp), parameter :: gl_t(3) = [0.5_wp - 0.5_wp*sqrt(0.6_wp), 0.5_wp, 0.5_wp + 0.5_wp*sqrt(0.6_wp)]
-   real(wp), parameter :: gl_w(3) = [5.0_wp/18.0_wp, 8.0_wp/18.0_wp, 5.0_wp/18.0_wp]
+   ! 4-point Gauss-Legendre rule on [0, 1] (exact for degree 7)
+   real(wp), parameter :: gq_s = sqrt(3.0_wp/7.0_wp - 2.0_wp/7.0_wp*sqrt(1.2_wp))
+   real(wp), parameter :: gq_l = sqrt(3.0_wp/7.0_wp + 2.0_wp/7.0_wp*sqrt(1.2_wp))
+   real(wp), parameter :: gl_t(4) = 0.5_wp + 0.5_wp*[-gq_l, -gq_s, gq_s, gq_l]
+   real(wp), parameter :: gl_w(4) = 0.5_wp*[(18.0_wp - sqrt(30.0_wp))/36.0_wp, (18.0_wp + sqrt(30.0_wp))/36.0_wp, &
+                                         (18.0_wp + sqrt(30.0_wp))/36.0_wp, (18.0_wp - sqrt(30.0_wp))/36.0_wp]
    ! scaled gradients h grad m of the quadratic monomials m = 1, xi, eta, xi^2,
    ! xi eta, eta^2 as linear functions: coefficients of (1, xi, eta)
    real(wp), parameter :: cgx(3, 6) = reshape([0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 1, 0, 0, 0], [3, 6])
@@ -71,8 +84,9 @@ contains
    end function vem2_workspace_size
 
    !> Condensed stiffness ke(4n, 4n) of the node dofs, order (u1x, u1y, ...).
-   !> info: 0 ok, 1 non-positive area, 4 not 2n >= 6 nodes, 5 a side node off
-   !> the middle of its side, 6 singular projection; ke = 0 when info /= 0.
+   !> info: 0 ok, 1 non-positive area, 4 not 2n >= 6 nodes, 5 a side node too
+   !> far from the middle of its side (vem2_side_tangent, vem2_side_bulge), 6
+   !> singular projection; ke = 0 when info /= 0.
    !> `tau` (> 0, default vem_tau) scales the stabilisation.
    pure subroutine vem2_stiffness(xy, d, thick, ke, work, info, tau)
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick
@@ -163,7 +177,7 @@ contains
    end subroutine offsets
 
    !> Full (uncondensed) stiffness into work(1:nd*nd), the strain operator B
-   !> and W = D G1^-1 B into work (see offsets); area the polygon's area.
+   !> and W = D G1^-1 B into work (see offsets); area the cell's area.
    pure subroutine full_stiffness(xy, d, thick, ts, work, nn, info, area)
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick, ts
       real(wp), intent(inout) :: work(:)
@@ -171,7 +185,7 @@ contains
       integer, intent(out) :: info
       real(wp), intent(out) :: area
       integer :: n, i, ip1, ok, ob, ow, op, oq, os, od, ns, nd
-      real(wp) :: side(2), off(2)
+      real(wp) :: side(2), off(2), xc(2), h, mono(6)
       info = 0
       area = 0.0_wp
       if (nn < 6 .or. mod(nn, 2) /= 0) then
@@ -179,54 +193,84 @@ contains
          return
       end if
       n = nn/2
-      area = polygon_signed_area(xy(:, 1:n))
-      if (.not. area > 0.0_wp) then
-         info = vem2_bad_area
-         return
-      end if
       do i = 1, n
          ip1 = mod(i, n) + 1
          side = xy(:, ip1) - xy(:, i)
          off = xy(:, n + i) - 0.5_wp*(xy(:, i) + xy(:, ip1))
-         if (norm2(off) > vem2_side_rtol*norm2(side)) then
+         if (abs(dot_product(off, side)) > vem2_side_tangent*dot_product(side, side) .or. &
+             norm2(off) > vem2_side_bulge*norm2(side)) then
             info = vem2_bad_side_node
             return
          end if
       end do
+      call geometry(xy, n, xc, h, mono, area)
+      if (.not. area > 0.0_wp) then
+         info = vem2_bad_area
+         return
+      end if
       ns = nn + 1
       nd = 2*ns
       call offsets(nn, ok, ob, ow, op, oq, os, od)
-      call build(xy(:, 1:n), n, ns, nd, area, d, thick, ts, work(ok:ok + nd*nd - 1), &
+      call build(xy, n, ns, nd, area, xc, h, mono, d, thick, ts, work(ok:ok + nd*nd - 1), &
                  work(ob:ob + 9*nd - 1), work(ow:ow + 9*nd - 1), work(op:op + ns*ns - 1), &
                  work(oq:oq + 6*ns - 1), work(os:os + ns - 1), work(od:od + nd - 1), info)
    end subroutine full_stiffness
 
-   !> Geometry of the polygon: centroid xc, size h (largest corner distance
-   !> from xc), integrals mono = integral of (1, xi, eta, xi^2, xi eta, eta^2)
-   !> with xi = (x - xc)/h, eta = (y - yc)/h, by the divergence theorem:
+   !> Point x and derivative dx = x'(t) of side (a, b, m) at t, and the
+   !> Lagrange quadratics lag = (L_a, L_b, L_m) of t = 0, 1, 1/2 there.
+   pure subroutine side_point(a, b, m, t, x, dx, lag)
+      real(wp), intent(in) :: a(2), b(2), m(2), t
+      real(wp), intent(out) :: x(2), dx(2), lag(3)
+      real(wp) :: dl(3)
+      lag = [(1.0_wp - t)*(1.0_wp - 2.0_wp*t), t*(2.0_wp*t - 1.0_wp), 4.0_wp*t*(1.0_wp - t)]
+      dl = [4.0_wp*t - 3.0_wp, 4.0_wp*t - 1.0_wp, 4.0_wp - 8.0_wp*t]
+      x = a*lag(1) + b*lag(2) + m*lag(3)
+      dx = a*dl(1) + b*dl(2) + m*dl(3)
+   end subroutine side_point
+
+   !> Geometry of the cell bounded by the sides of xy (corners 1..n, side
+   !> nodes n+1..2n): area, centroid xc, size h (largest node distance from
+   !> xc) and mono = integral of (1, xi, eta, xi^2, xi eta, eta^2) with
+   !> xi = (x - xc)/h, eta = (y - yc)/h, by the divergence theorem:
    !> integral xi^a eta^b = (h/(a+1)) boundary integral xi^(a+1) eta^b n_x ds,
-   !> with n_x ds = dy dt on a counter-clockwise side (degree <= 3: 3-point
-   !> Gauss is exact).
-   pure subroutine geometry(cxy, n, xc, h, mono)
-      real(wp), intent(in) :: cxy(:, :)
+   !> n_x ds = y'(t) dt on a counter-clockwise side.  The integrand of xi^2 has
+   !> degree 3*2 + 1 = 7 in t on a curved side: the 4-point rule is exact.  The
+   !> area and the centroid first, about the mean of the corners x0 (integrals
+   !> of 1, x - x0 and y - y0 the same way).
+   pure subroutine geometry(xy, n, xc, h, mono, area)
+      real(wp), intent(in) :: xy(:, :)
       integer, intent(in) :: n
-      real(wp), intent(out) :: xc(2), h, mono(6)
-      real(wp) :: p(2), q(2), dy, xi, eta, w
-      integer :: i, g
-      call polygon_centroid(cxy, xc)
-      h = 0.0_wp
+      real(wp), intent(out) :: xc(2), h, mono(6), area
+      real(wp) :: x0(2), s(2), p(2), dp(2), lag(3), xi, eta, w
+      integer :: i, j, g
+      x0 = sum(xy(:, 1:n), dim=2)/real(n, wp)
+      area = 0.0_wp
+      s = 0.0_wp
       do i = 1, n
-         h = max(h, norm2(cxy(:, i) - xc))
+         j = mod(i, n) + 1
+         do g = 1, 4
+            call side_point(xy(:, i), xy(:, j), xy(:, n + i), gl_t(g), p, dp, lag)
+            p = p - x0
+            w = gl_w(g)*dp(2)
+            area = area + w*p(1)
+            s = s + w*[p(1)*p(1)/2, p(1)*p(2)]
+         end do
+      end do
+      xc = x0
+      if (.not. area > 0.0_wp) return
+      xc = x0 + s/area
+      h = 0.0_wp
+      do i = 1, 2*n
+         h = max(h, norm2(xy(:, i) - xc))
       end do
       mono = 0.0_wp
       do i = 1, n
-         p = cxy(:, i)
-         q = cxy(:, mod(i, n) + 1)
-         dy = q(2) - p(2)
-         do g = 1, 3
-            xi = (p(1) + gl_t(g)*(q(1) - p(1)) - xc(1))/h
-            eta = (p(2) + gl_t(g)*(q(2) - p(2)) - xc(2))/h
-            w = gl_w(g)*dy*h
+         j = mod(i, n) + 1
+         do g = 1, 4
+            call side_point(xy(:, i), xy(:, j), xy(:, n + i), gl_t(g), p, dp, lag)
+            xi = (p(1) - xc(1))/h
+            eta = (p(2) - xc(2))/h
+            w = gl_w(g)*dp(2)*h
             mono(1) = mono(1) + w*xi
             mono(2) = mono(2) + w*xi*xi/2
             mono(3) = mono(3) + w*xi*eta
@@ -255,49 +299,41 @@ contains
       g(:, 3) = [mono(3), mono(5), mono(6)]
    end function mass_p1
 
-   pure subroutine build(cxy, n, ns, nd, area, d, thick, ts, kf, bm, wm, pm, pst, sv, dia, info)
-      real(wp), intent(in) :: cxy(:, :)
+   pure subroutine build(xy, n, ns, nd, area, xc, h, mono, d, thick, ts, kf, bm, wm, pm, pst, sv, dia, info)
+      real(wp), intent(in) :: xy(:, :)
       integer, intent(in) :: n, ns, nd
-      real(wp), intent(in) :: area, d(3, 3), thick, ts
+      real(wp), intent(in) :: area, xc(2), h, mono(6), d(3, 3), thick, ts
       real(wp), intent(out) :: kf(nd, nd), bm(3, nd, 3), wm(3, nd, 3), pm(ns, ns), pst(6, ns), sv(ns), dia(nd)
       integer, intent(out) :: info
-      real(wp) :: xc(2), h, mono(6), g1(3, 3), g1c(3, 3), g1i(3, 3), g2(6, 6), dcap(3, 3), excess
-      real(wp) :: pa(2), pb(2), pc(2), nrm(2), ma(6), mb(6), mc(6), ga(2), gb(2), gc(2)
+      real(wp) :: g1(3, 3), g1c(3, 3), g1i(3, 3), g2(6, 6), dcap(3, 3), excess
+      real(wp) :: p(2), dp(2), lag(3), nrm(2), ma(6), gm(2)
       real(wp) :: tr, floor_s, c(3), acc
-      integer :: i, j, a, k, l, ia, ib, ic, al, be
+      integer :: i, j, a, k, l, g, al, be, node(3)
       logical :: ok
       info = 0
-      call geometry(cxy, n, xc, h, mono)
 
       ! strain projection: B_alpha(v) = integral eps(v) m_alpha (Voigt, engineering
       ! shear) for m_alpha = 1, xi, eta
       bm = 0.0_wp
       pst = 0.0_wp
+      ! boundary terms along each side: u = sum_k u_k lag_k(t) (k = a, b, m),
+      ! n ds = nrm dt; m_alpha linear in x, so degree 2 + 2 + 1 = 5 in t
       do i = 1, n
-         j = mod(i, n) + 1
-         pa = cxy(:, i)
-         pb = cxy(:, j)
-         pc = 0.5_wp*(pa + pb)
-         nrm = [pb(2) - pa(2), -(pb(1) - pa(1))]    ! length times outward normal
-         ma = monomials(pa, xc, h)
-         mb = monomials(pb, xc, h)
-         mc = monomials(pc, xc, h)
-         ia = i            ! node numbers of the side's Simpson points
-         ib = j
-         ic = n + i
-         do al = 1, 3
-            call side_term(bm, nd, al, ia, ma(al)/6.0_wp, nrm)
-            call side_term(bm, nd, al, ib, mb(al)/6.0_wp, nrm)
-            call side_term(bm, nd, al, ic, 4.0_wp*mc(al)/6.0_wp, nrm)
-         end do
-         ! H1 projection rows 2..6: h boundary integral u (h grad m) . n
-         do al = 2, 6
-            ga = [dot_product(cgx(:, al), ma(1:3)), dot_product(cgy(:, al), ma(1:3))]
-            gb = [dot_product(cgx(:, al), mb(1:3)), dot_product(cgy(:, al), mb(1:3))]
-            gc = [dot_product(cgx(:, al), mc(1:3)), dot_product(cgy(:, al), mc(1:3))]
-            pst(al, ia) = pst(al, ia) + h*dot_product(ga, nrm)/6.0_wp
-            pst(al, ib) = pst(al, ib) + h*dot_product(gb, nrm)/6.0_wp
-            pst(al, ic) = pst(al, ic) + 4.0_wp*h*dot_product(gc, nrm)/6.0_wp
+         node = [i, mod(i, n) + 1, n + i]
+         do g = 1, 4
+            call side_point(xy(:, node(1)), xy(:, node(2)), xy(:, node(3)), gl_t(g), p, dp, lag)
+            nrm = gl_w(g)*[dp(2), -dp(1)]      ! weight times x'(t) turned outward
+            ma = monomials(p, xc, h)
+            do k = 1, 3
+               do al = 1, 3
+                  call side_term(bm, nd, al, node(k), lag(k)*ma(al), nrm)
+               end do
+               ! H1 projection rows 2..6: h boundary integral u (h grad m) . n
+               do al = 2, 6
+                  gm = [dot_product(cgx(:, al), ma(1:3)), dot_product(cgy(:, al), ma(1:3))]
+                  pst(al, node(k)) = pst(al, node(k)) + h*lag(k)*dot_product(gm, nrm)
+               end do
+            end do
          end do
       end do
       ! volume terms - integral u . div(tau): only m = xi (d/dx = 1/h) and
@@ -386,10 +422,8 @@ contains
       end if
       ! Pi = Dm Pi*, Dm(j, beta) the dof j of monomial beta; then I - Pi
       do j = 1, ns
-         if (j <= n) then
-            ma = monomials(cxy(:, j), xc, h)
-         else if (j < ns) then
-            ma = monomials(0.5_wp*(cxy(:, j - n) + cxy(:, mod(j - n, n) + 1)), xc, h)
+         if (j < ns) then
+            ma = monomials(xy(:, j), xc, h)
          else
             ma = mono/area
          end if
@@ -417,8 +451,9 @@ contains
       end do
    end subroutine build
 
-   !> Boundary part of B_alpha (bm(:, :, al)) at node `node`: the Simpson weight
-   !> times m_alpha, w, times the side's length-weighted normal nrm.
+   !> Boundary part of B_alpha (bm(:, :, al)) at node `node`: w (the node's
+   !> Lagrange quadratic times m_alpha at a Gauss point) times nrm (the Gauss
+   !> weight times the side's outward normal scaled by |x'(t)|).
    pure subroutine side_term(bm, nd, al, node, w, nrm)
       integer, intent(in) :: nd, al, node
       real(wp), intent(inout) :: bm(3, nd, 3)
@@ -496,14 +531,14 @@ contains
       real(wp), intent(out) :: sig(3)
       real(wp), intent(out), optional :: signode(:, :)
       integer :: ok, ob, ow, op, oq, os, od, nd, n, j, info
-      real(wp) :: kmi(2, 2), mu(2), xc(2), h, mono(6), m(6)
+      real(wp) :: kmi(2, 2), mu(2), xc(2), h, mono(6), m(6), area
       real(wp) :: coef(3, 3)
       nd = 2*nn + 2
       n = nn/2
       call offsets(nn, ok, ob, ow, op, oq, os, od)
       call moments(work(ok:ok + nd*nd - 1), nn, ue, fm, mu, kmi, info)
       if (info /= 0) return
-      call geometry(xy(:, 1:n), n, xc, h, mono)
+      call geometry(xy, n, xc, h, mono, area)
       ! W = D G1^-1 B, so D E_alpha = W_alpha v
       call strain_coefficients(work(ow:ow + 9*nd - 1), nd, ue, mu, coef)
       ! mean: (1/|E|) sum_alpha integral(m_alpha) D E_alpha, integral(xi) = integral(eta) = 0

@@ -9,7 +9,15 @@
 !>    side nodes added): u prescribed on the boundary, body force inside, every
 !>    node's displacement reproduced within 1e-10 relative;
 !>  - the stress recovered from the node displacements is the exact (linear)
-!>    stress, at the nodes and on average.
+!>    stress, at the nodes and on average;
+!>  - curved sides (side nodes off the middle, each side the quadratic curve
+!>    through its nodes): straight sides give the straight element (the checks
+!>    above), a curved cell keeps the rigid modes in its kernel, its body load
+!>    sums to t|E| with |E| from Archimedes' parabolic segments (4/3 of the
+!>    triangle a-m-b on each side), and a linear field (in the curved-side
+!>    space) passes the element patch test (traction sigma.n integrated along
+!>    the curve) and the mesh patch test on meshes with every side curved; a
+!>    quadratic field (not in the space on curved sides) does not.
 program test_vem2
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_testing, only: checker_t
@@ -59,6 +67,23 @@ program test_vem2
       call hanging_quad_grid(3, 3, x, ptr, conn)
       call add_side_nodes(x, ptr, conn, x2, ptr2, conn2)
       call mesh_patch(x2, ptr2, conn2, plane, 'collinear-corner (hanging node) mesh')
+
+      ! curved sides
+      do k = 1, 4
+         n = 2 + k
+         call random_convex_polygon(n, state, xy)
+         call curved_single(xy, plane, 'curved convex polygon')
+      end do
+      call random_star_polygon(6, state, xy)
+      call curved_single(xy, plane, 'curved star polygon')
+      call dual_polymesh(4, 0.3_wp, 3, x, ptr, conn)
+      call add_side_nodes(x, ptr, conn, x2, ptr2, conn2)
+      call bend_sides(x2, ptr2, conn2)
+      call mesh_patch(x2, ptr2, conn2, plane, 'curved-side dual polygon mesh', linear=.true.)
+      call dual_polymesh(4, 0.2_wp, 5, x, ptr, conn, median=.true.)
+      call add_side_nodes(x, ptr, conn, x2, ptr2, conn2)
+      call bend_sides(x2, ptr2, conn2)
+      call mesh_patch(x2, ptr2, conn2, plane, 'curved-side non-convex median-dual mesh', linear=.true.)
    end do
    call t%finish()
 
@@ -78,6 +103,13 @@ contains
       e(3) = coef(3, 1) + coef(5, 1)*p(1) + 2*coef(6, 1)*p(2) &
              + coef(2, 2) + 2*coef(4, 2)*p(1) + coef(5, 2)*p(2)
    end function strain
+
+   !> The linear part of field.
+   pure function field1(p) result(u)
+      real(wp), intent(in) :: p(2)
+      real(wp) :: u(2)
+      u = matmul([1.0_wp, p(1), p(2)], coef(1:3, :))
+   end function field1
 
    !> -div(D eps), constant.
    pure function body(d) result(b)
@@ -100,6 +132,120 @@ contains
          xy2(:, n + i) = 0.5_wp*(xy(:, i) + xy(:, mod(i, n) + 1))
       end do
    end function with_sides
+
+   !> Each side node moved across its side by a fraction of the side's length
+   !> (between -0.15 and 0.15, varying from side to side): every side curved,
+   !> shared sides alike for both neighbours.
+   subroutine bend_sides(x, ptr, conn)
+      real(wp), intent(inout) :: x(:, :)
+      integer(ip), intent(in) :: ptr(:), conn(:)
+      logical, allocatable :: done(:)
+      integer :: e, nc, i, node
+      real(wp) :: s(2)
+      allocate (done(size(x, 2)), source=.false.)
+      do e = 1, size(ptr) - 1
+         nc = (ptr(e + 1) - ptr(e))/2
+         do i = 1, nc
+            node = conn(ptr(e) + nc + i - 1)
+            if (done(node)) cycle
+            done(node) = .true.
+            s = x(:, conn(ptr(e) + mod(i, nc))) - x(:, conn(ptr(e) + i - 1))
+            x(:, node) = x(:, node) + 0.15_wp*sin(1.3_wp*node)*[s(2), -s(1)]
+         end do
+      end do
+   end subroutine bend_sides
+
+   !> A cell of corners cxy with every side curved (side node moved across the
+   !> side by +-0.1 to 0.2 of its length).
+   subroutine curved_single(cxy, plane, what)
+      real(wp), intent(in) :: cxy(:, :)
+      integer, intent(in) :: plane
+      character(len=*), intent(in) :: what
+      real(wp), allocatable :: xy2(:, :), ke(:, :), work(:), fb(:, :), u(:), f(:), r(:), sn(:, :)
+      real(wp) :: d(3, 3), sig(3), thick, kn, area, sd(2), dd(2), p(2), dp(2), lag(3), nrm(2)
+      real(wp), parameter :: gt(3) = [0.5_wp - 0.5_wp*sqrt(0.6_wp), 0.5_wp, 0.5_wp + 0.5_wp*sqrt(0.6_wp)]
+      real(wp), parameter :: gw(3) = [5.0_wp/18.0_wp, 8.0_wp/18.0_wp, 5.0_wp/18.0_wp]
+      integer :: n, nn, i, j, g, k, info, m, node(3)
+      n = size(cxy, 2)
+      xy2 = with_sides(cxy)
+      nn = 2*n
+      area = polygon_signed_area(cxy)
+      do i = 1, n
+         j = mod(i, n) + 1
+         sd = cxy(:, j) - cxy(:, i)
+         dd = (0.1_wp + 0.1_wp*mod(i, 2))*merge(1.0_wp, -1.0_wp, mod(i, 3) /= 0)*[sd(2), -sd(1)]
+         xy2(:, n + i) = xy2(:, n + i) + dd
+         area = area + 2.0_wp/3.0_wp*(dd(1)*sd(2) - dd(2)*sd(1))    ! Archimedes: 4/3 of triangle a-m-b
+      end do
+      thick = 0.5_wp
+      call elastic_matrix(2.0e5_wp, 0.3_wp, plane, d)
+      allocate (ke(2*nn, 2*nn), work(vem2_workspace_size(nn)), fb(2*nn, 2), u(2*nn), f(2*nn), sn(3, nn))
+      call vem2_stiffness(xy2, d, thick, ke, work, info)
+      call t%check(info == 0, what//': info = 0')
+      if (info /= 0) return
+      kn = maxval(abs(ke))
+      call t%check(maxval(abs(ke - transpose(ke))) <= 1.0e-14_wp*kn, what//': symmetric')
+      do m = 1, 3
+         do i = 1, nn
+            select case (m)
+            case (1); u(2*i - 1:2*i) = [1.0_wp, 0.0_wp]
+            case (2); u(2*i - 1:2*i) = [0.0_wp, 1.0_wp]
+            case (3); u(2*i - 1:2*i) = [-xy2(2, i), xy2(1, i)]
+            end select
+         end do
+         r = matmul(ke, u)
+         call t%check(maxval(abs(r)) <= 1.0e-12_wp*kn*maxval(abs(u)), what//': rigid mode in the kernel')
+      end do
+      call vem2_body_load(xy2, d, thick, fb, work, info)
+      call t%close(sum(fb(1::2, 1)), thick*area, 1.0e-12_wp, what//': body load sums to t|E| (curved |E|)')
+      ! traction of the linear field's constant stress along each curve: the
+      ! trace of a node's basis function is its Lagrange quadratic in t and
+      ! n ds = (y'(t), -x'(t)) dt is linear, so 3-point Gauss is exact
+      do k = 1, 2
+         f = 0
+         do i = 1, n
+            node = [i, mod(i, n) + 1, n + i]
+            do g = 1, 3
+               call curve_point(xy2(:, node(1)), xy2(:, node(2)), xy2(:, node(3)), gt(g), p, dp, lag)
+               nrm = gw(g)*[dp(2), -dp(1)]
+               do j = 1, 3
+                  if (k == 1) then
+                     call add_traction(f, d, thick, nrm, node(j), [0.0_wp, 0.0_wp], lag(j), linear=.true.)
+                  else
+                     call add_traction(f, d, thick, nrm, node(j), p, lag(j))
+                  end if
+               end do
+            end do
+         end do
+         if (k == 2) f = f + matmul(fb, body(d))
+         do i = 1, nn
+            if (k == 1) u(2*i - 1:2*i) = field1(xy2(:, i))
+            if (k == 2) u(2*i - 1:2*i) = field(xy2(:, i))
+         end do
+         r = matmul(ke, u) - f
+         if (k == 1) then
+            ! 1e-10 as the straight element patch test
+            call t%check(maxval(abs(r)) <= 1.0e-10_wp*maxval(abs(f)), what//': element patch test, linear field')
+            call vem2_stress(xy2, d, thick, u, work, sig, signode=sn)
+            sig = matmul(d, [coef(2, 1), coef(3, 2), coef(3, 1) + coef(2, 2)])
+            call t%check(maxval(abs(sn - spread(sig, 2, nn))) <= 1.0e-9_wp*maxval(abs(sig)), &
+                         what//': constant stress exact at the nodes')
+         else
+            ! not in the space: a residual of the order of the curvature, far above round-off
+            print '(a,es10.2)', what//': quadratic field, relative residual ', maxval(abs(r))/maxval(abs(f))
+            call t%check(maxval(abs(r)) > 1.0e-6_wp*maxval(abs(f)), what//': quadratic field not reproduced')
+         end if
+      end do
+   end subroutine curved_single
+
+   !> Point, derivative and Lagrange quadratics (t = 0, 1, 1/2) of the side a, b, m at t.
+   pure subroutine curve_point(a, b, m, t, p, dp, lag)
+      real(wp), intent(in) :: a(2), b(2), m(2), t
+      real(wp), intent(out) :: p(2), dp(2), lag(3)
+      lag = [2*(t - 0.5_wp)*(t - 1), 2*t*(t - 0.5_wp), 4*t*(1 - t)]
+      p = lag(1)*a + lag(2)*b + lag(3)*m
+      dp = (4*t - 3)*a + (4*t - 1)*b + (4 - 8*t)*m
+   end subroutine curve_point
 
    subroutine single(cxy, plane, what, tau)
       real(wp), intent(in) :: cxy(:, :), tau
@@ -167,22 +313,30 @@ contains
    end subroutine single
 
    !> f(node) += w t sigma(p) nrm (nrm: the side's length times its outward normal).
-   subroutine add_traction(f, d, thick, nrm, node, p, w)
+   !> With `linear`, sigma of the linear part of field (constant).
+   subroutine add_traction(f, d, thick, nrm, node, p, w, linear)
       real(wp), intent(inout) :: f(:)
       real(wp), intent(in) :: d(3, 3), thick, nrm(2), p(2), w
       integer, intent(in) :: node
+      logical, intent(in), optional :: linear
       real(wp) :: s(3)
       s = thick*matmul(d, strain(p))
+      if (present(linear)) then
+         if (linear) s = thick*matmul(d, [coef(2, 1), coef(3, 2), coef(3, 1) + coef(2, 2)])
+      end if
       f(2*node - 1) = f(2*node - 1) + w*(s(1)*nrm(1) + s(3)*nrm(2))
       f(2*node) = f(2*node) + w*(s(3)*nrm(1) + s(2)*nrm(2))
    end subroutine add_traction
 
-   !> Dense assembly, u prescribed on the boundary nodes, the body force inside.
-   subroutine mesh_patch(x, ptr, conn, plane, what)
+   !> Dense assembly, u prescribed on the boundary nodes, the body force inside;
+   !> with `linear`, the linear part of the field and no body force.
+   subroutine mesh_patch(x, ptr, conn, plane, what, linear)
       real(wp), intent(in) :: x(:, :)
       integer(ip), intent(in) :: ptr(:), conn(:)
       integer, intent(in) :: plane
       character(len=*), intent(in) :: what
+      logical, intent(in), optional :: linear
+      logical :: lin
       real(wp), allocatable :: a(:, :), f(:), u(:), uex(:), ke(:, :), fb(:, :), work(:)
       logical, allocatable :: fixed(:)
       integer, allocatable :: cnt(:)
@@ -191,8 +345,11 @@ contains
       integer :: nnode, ne, e, nn, i, j, info, lo, hi
       nnode = size(x, 2)
       ne = size(ptr) - 1
+      lin = .false.
+      if (present(linear)) lin = linear
       call elastic_matrix(2.0e5_wp, 0.3_wp, plane, d)
       b = body(d)
+      if (lin) b = 0
       allocate (a(2*nnode, 2*nnode), f(2*nnode), u(2*nnode), uex(2*nnode), fixed(2*nnode))
       allocate (cnt(nnode), source=0)
       a = 0
@@ -232,6 +389,7 @@ contains
       end do
       do i = 1, nnode
          uex(2*i - 1:2*i) = field(x(:, i))
+         if (lin) uex(2*i - 1:2*i) = field1(x(:, i))
       end do
       ! move the prescribed values to the right-hand side, identity rows for them
       f = f - matmul(a, merge(uex, 0.0_wp, fixed))
@@ -247,7 +405,7 @@ contains
       call t%check(info == 0, what//': stiffness positive definite')
       ! 1e-10 relative: the issue's target for the displacement patch test
       call t%check(maxval(abs(u - uex)) <= 1.0e-10_wp*maxval(abs(uex)), &
-                   what//': quadratic field reproduced at every node')
+                   what//': '//merge('linear   ', 'quadratic', lin)//' field reproduced at every node')
       print '(a,es10.2)', what//': max relative nodal error ', maxval(abs(u - uex))/maxval(abs(uex))
    end subroutine mesh_patch
 
