@@ -1,6 +1,6 @@
 """Second-order meshes from the mesher ([mesh] order = 2): one node per side, shared
 by the two cells on an interior side, split on joints like the corners, at the
-middle of the side (VEM) or on the circle on a curved FEM boundary; the deck lists
+middle of the side, or on the circle on a curved boundary (FEM and VEM); the deck lists
 corners then side nodes (VPE2, CPE8, CPE6) and vemcontact runs it."""
 import subprocess
 
@@ -114,10 +114,14 @@ divisions = [3, 3, 3]
     assert np.abs(m.nodes[s[~on_arc]] - 0.5 * (m.nodes[a[~on_arc]] + m.nodes[b[~on_arc]])).max() <= 1e-12
     text = write_deck(m, str("/dev/null"))
     assert "TYPE=CPE8" in text
-    # the VEM body keeps straight sides: side nodes at the middles
-    m = build(tomllib.loads(scene.replace('"fem"', '"vem"')))
-    a, b, cell, s = sides(m)
-    assert np.abs(m.nodes[s] - 0.5 * (m.nodes[a] + m.nodes[b])).max() <= 1e-12
+    # the VEM body (curved sides of the k = 2 virtual element) the same way
+    m2 = build(tomllib.loads(scene.replace('"fem"', '"vem"')))
+    a, b, cell, s = sides(m2)
+    r = np.hypot(m2.nodes[:, 0], m2.nodes[:, 1] - 10)
+    on_arc = (np.abs(r[a] - 10) < 1e-9) & (np.abs(r[b] - 10) < 1e-9)
+    assert on_arc.sum() > 0
+    assert np.abs(r[s[on_arc]] - 10).max() <= 1e-12 * 10
+    assert np.abs(m2.nodes[s[~on_arc]] - 0.5 * (m2.nodes[a[~on_arc]] + m2.nodes[b[~on_arc]])).max() <= 1e-12
 
 
 def test_triangles_become_cpe6_and_errors():

@@ -111,12 +111,9 @@ def check(path):
     if job.startswith("hertz_"):
         # 1 % on 1155 elements (test_contact.py::test_hertz_1155); the coarser meshes
         # are not held to a published accuracy: 5 % (they converge towards it)
-        # second order (hertz_329_*2): CPE8 within 1 % (test_second_order_contact.py);
-        # the k = 2 VEM disc, whose side nodes on the arc sit inside the circle
-        # (straight sides), is 9 % high (docs/contact-formulation.md): 10 %
-        if job.endswith("vem2"):
-            return hertz(r, 0.10, second_order=True)
-        if job.endswith("fem2"):
+        # second order (hertz_329_*2): CPE8 and the k = 2 VEM (curved arc sides)
+        # within 1 % (test_second_order_contact.py)
+        if job.endswith("vem2") or job.endswith("fem2"):
             return hertz(r, 0.01, second_order=True)
         return hertz(r, 0.01 if "_1155_" in job else 0.05)
     if job.startswith("interface_"):

@@ -69,14 +69,14 @@ class Mesh:
         return cnt[inv] == 1
 
 
-def add_side_nodes(m, arcs=(), curved_bodies=()):
+def add_side_nodes(m, arcs=()):
     """Make `m` second order: one new node per side, shared by the two cells on an
     interior side; sides on the two faces of a joint have different corner nodes, so
     they get different side nodes (the side nodes split like the vertices).  A side
-    node sits at the middle of its side, except on a boundary side of a cell whose
-    body is in `curved_bodies` (FEM bodies: isoparametric sides may curve) with both
-    corners on one of the circular `arcs` (center, radius): there it is placed on the
-    circle.  The virtual element needs straight sides, so VEM bodies keep the middle.
+    node sits at the middle of its side, except on a boundary side with both corners
+    on one of the circular `arcs` (center, radius): there it is placed on the circle,
+    at the middle angle, and the side is the quadratic curve through its three nodes
+    (isoparametric FEM sides and the k = 2 virtual element's curved sides alike).
     The new nodes follow the old ones; m.side_nodes is set."""
     a, b, cell, _ = m.edges()
     n0 = len(m.nodes)
@@ -84,13 +84,12 @@ def add_side_nodes(m, arcs=(), curved_bodies=()):
     key = lo.astype(np.int64) * (n0 + 1) + hi
     uniq, first, inv, cnt = np.unique(key, return_index=True, return_inverse=True, return_counts=True)
     mid = 0.5 * (m.nodes[a[first]] + m.nodes[b[first]])
-    if len(arcs) and len(curved_bodies):
+    if len(arcs):
         boundary = cnt == 1
-        curved = np.isin(m.cell_body[cell[first]], list(curved_bodies))
         size = np.ptp(m.nodes, axis=0).max() if n0 else 1.0
         for c, r in arcs:
             c = np.asarray(c, float)
-            on = boundary & curved
+            on = boundary.copy()
             da = np.abs(np.hypot(*(m.nodes[a[first]] - c).T) - r)
             db = np.abs(np.hypot(*(m.nodes[b[first]] - c).T) - r)
             on &= (da <= 1e-9 * size) & (db <= 1e-9 * size)

@@ -208,8 +208,7 @@ def build(scene, seed=None, verbose=False, processes=None):
     if elem_order not in (1, 2):
         raise MeshError(f"[mesh]: order must be 1 or 2, got {elem_order!r}")
     if elem_order == 2:
-        curved = [k for k, (_, et) in enumerate(m.bodies) if isinstance(et, FemType)]
-        add_side_nodes(m, arcs, curved)
+        add_side_nodes(m, arcs)
     size = diameter(m.nodes)
     tol = 1e-8 * size
     for k, s in enumerate(scene.get("selection", [])):
