@@ -286,7 +286,8 @@ def lame(work, quick=False, families=LINEAR_FAMILIES):
 
 # ----------------------------------------------------------------- Hertz
 HERTZ_P0, HERTZ_A = 83.60, 1.523
-HERTZ_FAMILIES = ("vem-quad", "vem-quad+nts-hard", "vem-quad+s2s-hard", "fem-quad", "fem-quad+nts-hard", "fem-tri")
+HERTZ_FAMILIES = ("vem-quad", "vem-quad+nts-hard", "vem-quad+s2s-hard", "fem-quad", "fem-quad+nts-hard", "fem-tri",
+                  "vem2-quad", "vem2-quad+nts-hard", "fem-q8", "fem-q8+nts-hard")
 HERTZ_SCENE = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex2_hertz.toml")).read().split("[[variant]]")[0]
 
 
@@ -294,7 +295,10 @@ def hertz(work, quick=False, families=HERTZ_FAMILIES):
     """The paper's Hertz half model (inputs/hertz_*: materials, K = 1e5, load 100 at the
     top) on its mesh family (postprocess/scenes/ex2_hertz.toml, same gradings): the
     paper's 389, 600 and 1155-element meshes, then the divisions of the 600-element mesh
-    times 2, 4 and 8 (bench/hertz_refined.toml's h20k and h100k are close to x3.3 and x7.5)."""
+    times 2, 4 and 8 (bench/hertz_refined.toml's h20k and h100k are close to x3.3 and x7.5).
+    Second order (k = 2 VEM, Q8; SURFACE TO SURFACE is refused on second-order sides): the
+    same meshes with `order = 2`, the disc's arc side nodes on the circle (curved sides),
+    up to x4 (about 3 times the unknowns of the first-order mesh)."""
     base_disc, base_block = (12, 12, 6), (16, 15)
     levels = [("389", (10, 10, 4), (13, 13)), ("600", base_disc, base_block),
               ("1155", (15, 15, 10), (24, 20))]
@@ -306,11 +310,14 @@ def hertz(work, quick=False, families=HERTZ_FAMILIES):
     for fam in families:
         base, variant = split_family(fam)
         shape = SHAPE[base]
-        for name, dd, bd in levels:
+        sfx, mform, order = _mesh_args(base)
+        for name, dd, bd in (levels if order == 1 else [lv for lv in levels if lv[0] != "600x8"]):
             toml = HERTZ_SCENE.replace('mesher = "quad"', f'mesher = "{shape}"')
             toml = toml.replace("divisions = [12, 12, 6]", f"divisions = {list(dd)}")
             toml = toml.replace("divisions = [16, 15]", f"divisions = {list(bd)}")
-            mp = meshes.mesher(toml, f"hz_{shape}_{name}", work + "/meshes")
+            if order == 2:
+                toml = toml.replace('formulation = "vem"', f'formulation = "{mform}"\norder = 2')
+            mp = meshes.mesher(toml, f"hz_{shape}{sfx}_{name}", work + "/meshes")
             m = meshes.read_inp(mp)
             deck = deck_text.replace("meshes/ex2_hertz_1155_vem.inp", _rel_include(work + "/decks", mp))
             deck = deck.replace("FORMULATION=VEM", f"FORMULATION={FORMULATION[base]}")
@@ -337,7 +344,8 @@ IF_E, IF_NU, IF_K, IF_D = 1.0e9, 0.3, 1.0e12, 0.1
 
 
 IF_FAMILIES = ("vem-voronoi", "vem-voronoi+nts-hard", "vem-voronoi+s2s-hard", "vem-quad", "vem-quad+nts-hard",
-               "vem-quad+s2s-hard", "fem-quad", "fem-quad+nts-hard", "fem-tri")
+               "vem-quad+s2s-hard", "fem-quad", "fem-quad+nts-hard", "fem-tri",
+               "vem2-voronoi", "vem2-quad", "vem2-quad+nts-hard", "fem-q8")
 
 
 def interface_exact(hard=False):
@@ -359,9 +367,12 @@ def interface(work, quick=False, families=IF_FAMILIES):
     for fam in families:
         base, variant = split_family(fam)
         shape = SHAPE[base]
+        sfx, mform, order = _mesh_args(base)
         p = interface_exact(hard=CONTACT_VARIANTS[variant][1] == "HARD")
         for k in ks:
             toml = scene
+            if order == 2:      # second order: the mesher's order = 2 mesh (VPE2, or CPE8 for FEM)
+                toml = toml.replace("lloyd = 40\n", f'lloyd = 40\nformulation = "{mform}"\norder = 2\n')
             if shape == "voronoi":
                 cells = 100 * k * k                   # per block; the paper's 200 at k = 1
                 toml = toml.replace("cells = 100", f"cells = {cells}")
@@ -373,7 +384,7 @@ def interface(work, quick=False, families=IF_FAMILIES):
                 toml = toml.replace("divisions = [24, 6]", f"divisions = [{24 * k}, {6 * k}]")
                 toml = toml.replace("divisions = [20, 5]", f"divisions = [{20 * k}, {5 * k}]")
                 desc = f"{24 * k}x{6 * k} below, {20 * k}x{5 * k} above {'quads' if shape == 'quad' else 'split quads'}"
-            mp = meshes.mesher(toml, f"if_{shape}_{k}", work + "/meshes")
+            mp = meshes.mesher(toml, f"if_{shape}{sfx}_{k}", work + "/meshes")
             m = meshes.read_inp(mp)
             deck = (f"** accuracy study (bench/accuracy): interface under uniform compression, rollers\n"
                     f"*HEADING\ninterface, uniaxial strain\n*INCLUDE, INPUT={_rel_include(work + '/decks', mp)}\n"
@@ -386,7 +397,7 @@ def interface(work, quick=False, families=IF_FAMILIES):
                     f"*STEP, NAME=COMPRESSION\n*STATIC\n*BOUNDARY\nTOP, 2, 2, {-IF_D!r}\n*END STEP\n")
             deck = contact_deck(deck, variant)
 
-            def metrics(res, p=p):
+            def metrics(res, p=p, order=order):
                 c = res["contact"]
                 cp = c["CPRESS"]
                 syy = -res["Se"][:, 1]
@@ -397,6 +408,10 @@ def interface(work, quick=False, families=IF_FAMILIES):
                 trib[1:] += np.diff(xo) / 2
                 trib[:-1] += np.diff(xo) / 2
                 resultant = float((cp[o] * trib).sum())
+                if order == 2:
+                    # second order: the slave nodes' own weights (l/6, 4l/6, l/6 per side;
+                    # thickness 1), not the half edges between neighbouring nodes
+                    resultant = float((cp * c["CNAREA"]).sum())
                 return dict(pressure=float(np.abs(cp - p).max() / p),
                             pressure_rms=float(math.sqrt(((cp - p) ** 2).mean()) / p),
                             resultant=abs(resultant - 4.0 * p) / (4.0 * p),

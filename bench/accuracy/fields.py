@@ -163,7 +163,7 @@ def read_result(h5path):
         contact = None
         if "contact" in step:
             g = step["contact/pair_1"]
-            contact = {k: g[k][...] for k in ("coordinates", "COPEN", "CPRESS", "STATUS")}
+            contact = {k: g[k][...] for k in ("coordinates", "COPEN", "CPRESS", "STATUS", "CNAREA") if k in g}
     return dict(x=x, off=off, conn=conn, U=U, Se=Se, Sn=Sn, contact=contact)
 
 

@@ -118,8 +118,9 @@ def annulus_polar(workdir, tag, a, b, nr, nt, shape, formulation="vem", order=1)
     """Polar grid of the quarter annulus: nr radial by nt angular cells, nodes exactly on
     the arcs; 'tri' splits each quad with alternating diagonals (as the mesher does).
     order 2: a node on every side, shared by its two cells, after the corners (Abaqus
-    order); VEM (VPE2) needs it in the middle of the straight side; FEM (CPE8/CPE6) has
-    it on the arc for the sides along a circle (isoparametric, as the mesher does)."""
+    order), in the middle of a radial side and on the arc for a side along a circle (the
+    side is then the quadratic curve through its three nodes: isoparametric CPE8/CPE6,
+    curved VPE2 sides), as the mesher does."""
     out = os.path.join(workdir, tag + ".inp")
     if os.path.exists(out):
         return out
@@ -153,7 +154,7 @@ def annulus_polar(workdir, tag, a, b, nr, nt, shape, formulation="vem", order=1)
                 if key not in side:
                     px, py = (xs[i - 1] + xs[j - 1]) / 2, (ys[i - 1] + ys[j - 1]) / 2
                     ri, rj = math.hypot(xs[i - 1], ys[i - 1]), math.hypot(xs[j - 1], ys[j - 1])
-                    if formulation == "fem" and abs(ri - rj) < 1e-12 * b:       # a side along an arc
+                    if abs(ri - rj) < 1e-12 * b:       # a side along an arc
                         t = math.atan2(py, px)
                         px, py = ri * math.cos(t), ri * math.sin(t)
                     xs.append(px)

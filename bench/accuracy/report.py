@@ -318,12 +318,13 @@ cell size. The boundary is a polygon with nodes on the circles, so the geometric
 (O(h^2)) is part of the error, as in practice. Metrics: u_r at the nodes (discrete L2,
 primary), energy norm of the element stress, and the hoop stress at the bore from the
 nodal (averaged) stress S_node, mean relative error over the bore nodes. Second order:
-the polar grid gets a node on every side; for k = 2 VEM (VPE2, straight sides) it is the
-middle of the chord, so the body is still the polygon of the corners and its O(h^2)
-geometric error bounds the displacement error (rate 2, not 3, the same error as k = 1
-VEM at the same element size); Q8 and T6 put the middle nodes of the arcs on the
-circle (isoparametric) and converge at rate 3-4. The hoop error is over the nodes on
-r = a (corners for VEM k = 2, corners and arc middles for Q8/T6).""",
+the polar grid gets a node on every side, on the circle for the sides along an arc: Q8
+and T6 sides are isoparametric, k = 2 VEM quads (VPE2) have curved sides (the quadratic
+curve through the side's three nodes, docs/vem-formulation.md), so both bodies follow
+the circles to O(h^3) and converge at rate 3-4. The k = 2 VEM on Voronoi cells meshes
+the polygon with arc vertices (its side nodes at the middles of the chords), whose O(h^2)
+geometric error bounds its displacement error (rate 2, not 3). The hoop error is over
+the nodes on r = a (corners and arc middles for the polar grids, corners for Voronoi).""",
     "hertz": """\
 **Set-up.** The paper's example 2 exactly as in `inputs/hertz_*` (disc R = 10, E = 1e3,
 on a block E = 1e6, nu = 0.3, plane strain, half model, load 100 at the top of the disc,
@@ -338,7 +339,10 @@ overclosure of ~8e-4 (0.05 % of a), so the discrete peak converges to a value sl
 off 83.60 and the error against 83.60 levels off: that floor is a modelling error, not
 a discretization error. The half-width is the a of a least-squares fit of
 p^2 = p0^2 (1 - x^2/a^2) to the slave nodes with p > 0.3 p_max. VEM on Voronoi is not
-run: the mesher meshes the half-disc only with structured quads/triangles.
+run: the mesher meshes the half-disc only with structured quads/triangles. Second order
+(k = 2 VEM on quads, Q8): the same meshes with `[mesh] order = 2`, the disc's arc side
+nodes on the circle (curved VPE2 sides, isoparametric Q8 sides), up to × 4; slave
+points are all nodes of the face with weights l/6, 4l/6, l/6 (docs/contact-formulation.md).
 
 **Contact formulations.** *NTS penalty* is the paper's deck: `TYPE=NODE TO SURFACE`
 (node to segment, finite sliding), `PRESSURE-OVERCLOSURE=LINEAR` with K = 1e5.
@@ -346,7 +350,8 @@ run: the mesher meshes the half-disc only with structured quads/triangles.
 overclosure; the active set is searched with soft springs, K h/E = 10, which stiffen to
 K h/E = 1e3 at the first multiplier update). *S2S HARD* is `TYPE=SURFACE TO SURFACE`
 (each side's interface nodes inserted into the other side's VEM polygons, node-to-node
-contact with the pairing fixed at the start) with HARD; VEM only (FEM bodies are refused),
+contact with the pairing fixed at the start) with HARD; VEM first order only (FEM bodies
+and second-order sides are refused),
 so the inserted nodes add a few unknowns (the unknowns column counts them). CPRESS is the
 force the solution balances over the tributary length of each slave node (inserted ones
 included).""",
@@ -362,7 +367,9 @@ for every k), triangles split from them, Voronoi with 100 k^2 cells per block. T
 exact solution is linear in each block, so every element represents it: what remains
 is the error of the node-to-segment transfer across non-matching meshes. Metrics: the
 largest and the RMS relative deviation of CPRESS from p over the slave nodes, and the
-largest relative deviation of the element sigma_yy from -p.
+largest relative deviation of the element sigma_yy from -p. Second order (k = 2 VEM on
+Voronoi cells and quads, Q8): the mesher's `order = 2` meshes; the resultant is then
+sum CPRESS * CNAREA (the weights l/6, 4l/6, l/6 of each slave side).
 
 **Contact formulations.** *NTS penalty* as above (K = 1e12); *NTS HARD*: the same pair
 with `PRESSURE-OVERCLOSURE=HARD` (augmented Lagrangian, no overclosure), measured against
@@ -611,11 +618,14 @@ SUMMARY_TEMPLATE = """\
   on arbitrary polygons and distorted meshes (docs/paper-reproduction.md, example 1).
   The quadratic manufactured field is reproduced to round-off by all four second-order
   families on every mesh (so "cheapest" there only says that a 4 × 4 mesh is exact).
-  Curved boundaries: VEM k = 2 has straight sides, so on the Lamé cylinder its
-  displacement error is that of the polygonal geometry, O(h^2), no better than k = 1
-  per element and worse per unknown; Q8/T6 with side nodes on the arc converge at
-  O(h^3-h^4) there (1.3e-8 at 15 000 unknowns). Its stresses still gain: energy 2.8e-4
-  at 15 000 unknowns for VEM k = 2 quads against 8.9e-3 at 20 000 for VEM quads.
+  Curved boundaries: with its side nodes on the arcs (curved sides) VEM k = 2 on quads
+  follows the circles of the Lamé cylinder as Q8 does: nodal displacement error 4.7e-7
+  at 15 000 unknowns (rate 3.5; with straight chords it was 6.0e-5, rate 2, the
+  polygon's O(h^2) geometric error), energy 2.7e-4 (Q8 3.7e-4); Q8 stays ahead in the
+  displacements (1.3e-8, rate 4). VEM k = 2 on Voronoi cells meshes the polygon with arc
+  vertices and keeps the O(h^2) geometric error (1.9e-4 at 25 000 unknowns). Stresses
+  gain either way: energy 2.7e-4 at 15 000 unknowns for VEM k = 2 quads against 8.9e-3
+  at 20 000 for VEM quads.
   Per unknown, second-order runs cost about 1.7-2.5 times as much time as first-order
   ones at 2-6·10^4 unknowns (denser matrix rows, more fill), which the accuracy gains
   dwarf; at 10^6 unknowns see docs/performance.md.
@@ -669,6 +679,14 @@ SUMMARY_TEMPLATE = """\
   applied 100 on the half model by the trapezoid rule, for all three), so these are
   accuracy and cost differences, not wrong answers. Use the penalty (or HARD where no
   overclosure is wanted) for curved contact; S2S gains nothing here and costs more.
+  **Second order** (VEM k = 2 quads with curved arc sides, Q8, both NODE TO SURFACE):
+  within 1 % from the coarsest mesh (389 elements, 2 538 unknowns: +0.46 % and +0.28 %
+  with the penalty), and they converge to the same modelling floor as first order (83.75
+  and 83.76 on 600 × 4, 58 580 unknowns; HARD 83.95 and 83.96). VEM k = 2 comes from
+  below: it passes 83.54 (-0.07 %) at 600 elements (3 848 unknowns), which the table
+  above counts as reaching 0.1 %, but that is a crossing on the way to the floor, not
+  convergence to 83.60; 0.1 % is out of reach for second order too. The half-width fit
+  is within 1.5 % on every mesh (0.7 % on the finer two).
 - **Non-matching interface:** the node-to-segment transfer on non-matching structured
   meshes leaves a pattern in the contact pressure that does not shrink with the mesh:
   slave nodes that sit over master nodes carry 9-10 % less pressure, the others about
@@ -682,7 +700,16 @@ SUMMARY_TEMPLATE = """\
   few percent more unknowns (the inserted interface nodes) and a run time of 0.4-1.3
   times the penalty's (noisy at a load of 2-5; node to surface with the penalty
   factorizes only once). Use it for non-matching interfaces of VEM bodies where the local
-  contact pressure matters.
+  contact pressure matters. **Second order with node to surface is worse here:** on the
+  mesher's `order = 2` meshes (VEM k = 2 on Voronoi cells and quads, Q8; slave weights
+  l/6, 4l/6, l/6 per side, master sides split into their two chords) the nodal contact
+  pressure deviates from p by 30-34 % (max) and 16-19 % (RMS) on quads and 47-57 % / 16-24 %
+  on Voronoi cells at every level, and the element sigma_yy by 5-17 %: a uniform pressure
+  is transmitted exactly only on matching meshes (test_second_order_contact.py), and
+  the node-to-segment transfer across non-matching quadratic sides distributes it
+  unevenly between corner and side nodes. The resultant (sum CPRESS * CNAREA) converges
+  at O(h) (6e-4 on the finest meshes). SURFACE TO SURFACE is refused on second-order
+  sides; for non-matching contact interfaces use first-order VEM with S2S.
 
 ## Notes
 
