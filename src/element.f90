@@ -29,7 +29,7 @@ module vemcontact_element
    integer, parameter, public :: elem_fem_nodes = 2      !< form_fem with n not 3 or 4 (6 or 8 for order 2)
    integer, parameter, public :: elem_bad_jacobian = 3   !< det J <= 0 at a Gauss point (FEM quad)
    integer, parameter, public :: elem_bad_nodes = 4      !< second order with an odd node count or fewer than 6
-   integer, parameter, public :: elem_bad_side_node = 5  !< k = 2 VEM: a side node off the middle of its side
+   integer, parameter, public :: elem_bad_side_node = 5  !< k = 2 VEM: a side node too far from the middle of its side
    integer, parameter, public :: elem_singular = 6       !< k = 2 VEM: singular projection or condensation
 
 contains
