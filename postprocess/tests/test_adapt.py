@@ -1,9 +1,8 @@
 """vc-adapt (postprocess/vctools/adapt.py) on the L-shaped domain, whose re-entrant corner
 makes the stress singular (r^(lambda - 1), lambda = 0.5445 for the 270-degree corner): the
 energy error of uniform refinement falls like N^(-lambda/2) = N^-0.27 asymptotically, that of
-bulk-marked adaptive refinement like N^-1/2 (optimal for k = 1).  Measured on these meshes
-(estimated error against unknowns, docs/error-estimate.md): adaptive 0.47 over cycles 2-6,
-uniform 0.335 over its three levels (still pre-asymptotic)."""
+bulk-marked adaptive refinement like N^-1/2 (optimal for k = 1).  vc-adapt splits the marked
+cells (the default for VEM); remeshing with a size field is checked on two cycles."""
 import math
 
 import h5py
@@ -81,7 +80,9 @@ def test_adaptive_rate_on_lshape(lshape, exe):
         # the named selections survive remeshing: the deck's BOTTOM and TOP sets are there
         text = (c / "mesh.inp").read_text().upper()
         assert "NSET=BOTTOM" in text and "NSET=TOP" in text
-    assert all((lshape / "ad" / f"cycle_{k:02d}" / "size.npz").is_file() for k in range(len(rows) - 1))
+    # splitting: the scene is meshed once, every later mesh is the previous one split
+    assert not any((lshape / "ad" / f"cycle_{k:02d}" / "size.npz").exists() for k in range(len(rows)))
+    assert "split" in (lshape / "ad" / "cycle_01" / "mesh.inp").read_text().splitlines()[2]
     assert all(b["estimate"] < a["estimate"] for a, b in zip(rows, rows[1:]))
     # the marked cells gather at the corner: the smallest cells of the last mesh are there
     x = adapt.read_estimate(lshape / "ad" / f"cycle_{rows[-1]['cycle']:02d}" / "lshape.h5")
@@ -144,3 +145,21 @@ def test_size_field_grading(tmp_path):
     for bad in ("missing.npz", "bad.npz"):
         with pytest.raises(MeshError, match="grading field"):
             Grading([{"field": str(tmp_path / bad)}], "body 'B'")
+
+
+def test_remesh_option_and_fem_refused(lshape, exe):
+    lines = []
+    rows = adapt.adapt(lshape / "lshape.inp", lshape / "lshape.toml", 1e-3, lshape / "r", max_cycles=1,
+                       exe=exe, refine="remesh", echo=lines.append)
+    assert len(rows) == 2 and "after 1 cycles" in lines[-1]
+    # remeshing: the size field of cycle 0 made cycle 1's mesh, more cells where marked
+    assert (lshape / "r" / "cycle_00" / "size.npz").is_file()
+    assert rows[1]["cells"] > rows[0]["cells"] and rows[1]["estimate"] < rows[0]["estimate"]
+    # splitting FEM cells is refused with a message naming the FEM body (remesh instead)
+    (lshape / "fem.toml").write_text(SCENE.replace('plane = "strain"', 'plane = "strain"\nformulation = "fem"')
+                                     .replace('polygon = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], '
+                                              '[1.0, 2.0], [0.0, 2.0]]\ncells = 60',
+                                              'rectangle = [0.0, 0.0, 2.0, 2.0]\nmesher = "quad"'))
+    with pytest.raises(adapt.AdaptError, match="FEM: L"):
+        adapt.adapt(lshape / "lshape.inp", lshape / "fem.toml", 1e-3, lshape / "f", exe=exe, refine="split",
+                    echo=lines.append)
