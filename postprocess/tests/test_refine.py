@@ -91,7 +91,7 @@ def test_split_voronoi_with_joint():
     rng = np.random.default_rng(1)
     m = m0
     q0 = shape_quality(m0)
-    for cycle in range(4):
+    for _ in range(4):
         mark = rng.random(m.ncell) < 0.4
         mark[np.flatnonzero(np.isin(np.arange(m.ncell), m.esurfaces["J_MASTER"][0]))[:3]] = True
         m1, parent = refine(m, mark)
@@ -124,6 +124,9 @@ def test_split_voronoi_with_joint():
         on = on[np.isin(on, np.unique(boundary_edges(m1)))]
         assert np.array_equal(np.sort(slave), np.setdiff1d(on, np.append(ends.ravel(), tip)))
         assert np.array_equal(np.sort(m1.nsets["J_MASTER"]), np.unique(ends))
+        # the faces are split together: a slave node at every master node but the tip
+        x_of = np.round(m1.nodes[:, 0], 12)
+        assert np.array_equal(np.unique(x_of[slave]), np.setdiff1d(np.unique(x_of[ends]), x_of[tip]))
         m = m1
     # shape over four cycles (40 % of the cells marked at random each): the largest
     # diameter^2 / area and the smallest corner angle stay near the Voronoi mesh's

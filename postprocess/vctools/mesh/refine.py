@@ -20,7 +20,8 @@ so cells of FEM bodies are neither split nor given hanging nodes: refine() refus
 
 What survives, with new indices:
 - joints: the two faces of a joint have different (duplicated) nodes, so their edges get
-  different middle nodes: a split joint edge stays a joint edge;
+  different middle nodes: a split joint edge stays a joint edge; an edge split on one face
+  is split on the other too (the faces keep matching nodes);
 - node sets and node surfaces: a new middle node joins every set that holds both ends of
   its edge; on a joint's slave face also when the other end is the joint's tip (shared,
   not in the slave set);
@@ -177,6 +178,20 @@ def refine(m, marked):
                 q = run[int(np.searchsorted(t, 2 * half * half)) - 1]
                 sp.append(("new", midpoint(s + q)))
         split[c] = (ic, sp)
+    # the two faces of a joint are split together: a boundary edge with the same end points
+    # as an edge that got a middle node (its twin across the joint) gets one too, so the
+    # faces keep matching nodes (a slave face coarser than its master lets the master's new
+    # nodes pass through it)
+    bpos = np.flatnonzero(boundary)
+    twins = {}
+    for pos in bpos:
+        pa, pb = tuple(m.nodes[a[pos]]), tuple(m.nodes[b[pos]])
+        twins.setdefault((min(pa, pb), max(pa, pb)), []).append(int(pos))
+    for pos in bpos:
+        if int(ekey[pos]) in mid:
+            pa, pb = tuple(m.nodes[a[pos]]), tuple(m.nodes[b[pos]])
+            for q in twins[(min(pa, pb), max(pa, pb))]:
+                midpoint(q)
     # pass 2: new connectivity; every cell gets the new middle nodes of its edges
     new_nodes = np.vstack([m.nodes, np.asarray(new_xy).reshape(-1, 2)])
     conn, ptr, parent = [], [0], []
