@@ -123,8 +123,8 @@ def section(path=CSV, figdir=None, path_hertz=CSV_HERTZ):
         "through the coarser one made the estimate stall at 2.8-3.0 % from 15 000 unknowns on, its largest",
         "indicators walking along the joint.  The earlier loop that remeshed the scene in every cycle (now",
         "`vc-adapt --refine remesh`) reached 1.83 % with 3.9 times fewer unknowns than uniform but took 53 s",
-        "against 14 s, the mesher's Lloyd iterations dominating; splitting costs 0.2-5 s per cycle (Python,",
-        "47 000 cells in 5 s) and brings the loop below the uniform run.",
+        "against 14 s, the mesher's Lloyd iterations dominating; splitting costs 0.03-1 s per cycle (Python,",
+        "47 000 cells in 1 s) and brings the loop well below the uniform run.",
         ""]
     if os.path.exists(path_hertz):
         ad, un = _read(path_hertz)
@@ -147,12 +147,12 @@ def section(path=CSV, figdir=None, path_hertz=CSV_HERTZ):
         lines += [
             "Uniform refinement of this mesh converges at nearly the optimal rate, so adaptivity gains a",
             "factor that grows only slowly: 4.5 times fewer unknowns at 1.9 %, 4.8 at 1.0 % (interpolated; 3.3",
-            "at the cycle that reaches it), at about the wall time of the one uniform run.  The marked cells",
+            "at the cycle that reaches it), in a little less wall time than the one uniform run.  The marked cells",
             "gather at the contact zone in the first cycles (the largest indicators of cycles 0-3 at (0.18, 11.2),",
             "(0.19, 10.4), (3.5, 11.8), (2.0, 11.2): the disc just above the contact), then spread: at the last",
             "cycle 24 % of the cells lie within 2 of the contact point (2.4 % of the area), and no cell holds",
-            "more than 0.005 % of the squared estimate.  Splitting costs more at these sizes (11.6 s for 114 000",
-            "cells in Python, the run 27 s).",
+            "more than 0.005 % of the squared estimate.  Splitting 71 600 cells and writing the deck took 2.2 s,",
+            "the run 19 s.",
             ""]
         eff = os.path.join(os.path.dirname(path_hertz), "adapt_hertz_effectivity.csv")
         if os.path.exists(eff):

@@ -34,7 +34,9 @@ What survives, with new indices:
 """
 from __future__ import annotations
 
+import bisect
 import copy
+import math
 
 import numpy as np
 
@@ -56,8 +58,9 @@ def corners(P, straight=STRAIGHT, short=SHORT):
     vertices where the boundary turns by more than `straight` (rad); at least three, the
     ones that turn most; and no side between corners shorter than `short` times the longest
     (module docstring)."""
-    a = P - np.roll(P, 1, axis=0)
-    b = np.roll(P, -1, axis=0) - P
+    nxt = np.r_[1:len(P), 0]
+    b = P[nxt] - P
+    a = b[np.r_[len(P) - 1, 0:len(P) - 1]]
     turn = np.abs(np.arctan2(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0], (a * b).sum(1)))
     mask = turn > straight
     if mask.sum() < 3:
@@ -68,7 +71,7 @@ def corners(P, straight=STRAIGHT, short=SHORT):
         while mask.sum() > 3:
             ic = np.flatnonzero(mask)
             Q = P[ic]
-            L = np.hypot(*(np.roll(Q, -1, axis=0) - Q).T)
+            L = np.hypot(*(Q[np.r_[1:len(Q), 0]] - Q).T)
             j = int(np.argmin(L))
             if L[j] >= short * L.max():
                 break
@@ -78,10 +81,38 @@ def corners(P, straight=STRAIGHT, short=SHORT):
 
 
 def _in_kernel(P, c, eps=1e-9):
-    e = np.roll(P, -1, axis=0) - P
+    e = P[np.r_[1:len(P), 0]] - P
     d = c - P
     cr = e[:, 0] * d[:, 1] - e[:, 1] * d[:, 0]
     return bool((cr > eps * np.hypot(*e.T) * np.ptp(P, axis=0).max()).all())
+
+
+def _corner_list(xs, ys, turn, straight=STRAIGHT, short=SHORT):
+    """corners() on plain lists (the vertex turns given): sorted corner positions."""
+    n = len(xs)
+    ic = [i for i in range(n) if turn[i] > straight]
+    if len(ic) < 3:
+        ic = sorted(sorted(range(n), key=lambda i: -turn[i])[:3])
+    while short > 0 and len(ic) > 3:
+        k = len(ic)
+        L = [math.hypot(xs[ic[(j + 1) % k]] - xs[ic[j]], ys[ic[(j + 1) % k]] - ys[ic[j]]) for j in range(k)]
+        j = min(range(k), key=L.__getitem__)
+        if L[j] >= short * max(L):
+            break
+        i0, i1 = ic[j], ic[(j + 1) % k]
+        ic.remove(i0 if turn[i0] < turn[i1] else i1)
+    return ic
+
+
+def _in_kernel_list(xs, ys, cx, cy, eps=1e-9):
+    """_in_kernel on plain lists."""
+    n = len(xs)
+    ext = max(max(xs) - min(xs), max(ys) - min(ys))
+    for k in range(n):
+        ex, ey = xs[(k + 1) % n] - xs[k], ys[(k + 1) % n] - ys[k]
+        if ex * (cy - ys[k]) - ey * (cx - xs[k]) <= eps * math.hypot(ex, ey) * ext:
+            return False
+    return True
 
 
 def _kernel_center(P, where):
@@ -149,88 +180,112 @@ def refine(m, marked):
 
     cell_of = m.cell_index()
     fem = [k for k, (_, et) in enumerate(m.bodies) if _is_fem(et)]
-    if fem and marked[np.isin(m.cell_body, fem)].any():
-        k = int(m.cell_body[np.flatnonzero(marked & np.isin(m.cell_body, fem))[0]])
+    is_fem = np.isin(m.cell_body, fem)
+    if fem and marked[is_fem].any():
+        k = int(m.cell_body[np.flatnonzero(marked & is_fem)[0]])
         raise MeshError(f"body {m.bodies[k][0]!r} is FEM: its cells cannot be split (a FEM cell takes no "
                         f"hanging node); use formulation = 'vem' or refinement by remeshing")
+    # plain Python lists in the per-cell loops (small polygons: numpy per cell is slower)
+    X, Y = m.nodes[:, 0].tolist(), m.nodes[:, 1].tolist()
+    conn_l, ptr_l = m.conn.tolist(), m.ptr.tolist()
+    P = m.nodes[m.conn]
+    e_out = P[nxt] - P
+    e_in = np.empty_like(e_out)
+    e_in[nxt] = e_out
+    turn_l = np.abs(np.arctan2(e_in[:, 0] * e_out[:, 1] - e_in[:, 1] * e_out[:, 0],
+                               (e_in * e_out).sum(1))).tolist()
     # pass 1: split points of the marked cells' geometric sides (new middle nodes where needed)
     split = {}
-    for c in np.flatnonzero(marked):
-        s, e = m.ptr[c], m.ptr[c + 1]
-        P = m.nodes[m.conn[s:e]]
+    for c in np.flatnonzero(marked).tolist():
+        s, e = ptr_l[c], ptr_l[c + 1]
         n = e - s
-        ic = np.flatnonzero(corners(P))
-        if len(ic) < 3:
-            raise MeshError(f"cell {c + 1}: fewer than three corners; it cannot be split")
+        v = conn_l[s:e]
+        ic = _corner_list([X[q] for q in v], [Y[q] for q in v], turn_l[s:e])
         sp = []
         for j in range(len(ic)):
             i0, i1 = ic[j], ic[(j + 1) % len(ic)]
             inner = [(i0 + t) % n for t in range(1, (i1 - i0) % n)]
-            g = 0.5 * (P[i0] + P[i1])
-            half = 0.5 * np.hypot(*(P[i1] - P[i0]))
-            best = min(inner, key=lambda q: np.hypot(*(P[q] - g))) if inner else None
-            if best is not None and np.hypot(*(P[best] - g)) <= 0.25 * half:
+            x0, y0, x1, y1 = X[v[i0]], Y[v[i0]], X[v[i1]], Y[v[i1]]
+            gx, gy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+            half = 0.5 * math.hypot(x1 - x0, y1 - y0)
+            best = min(inner, key=lambda q: math.hypot(X[v[q]] - gx, Y[v[q]] - gy)) if inner else None
+            if best is not None and math.hypot(X[v[best]] - gx, Y[v[best]] - gy) <= 0.25 * half:
                 sp.append(("old", best))
             else:
                 # no vertex near the middle: a new node at the middle of the edge that holds it
                 run = [i0] + inner
-                t = [np.dot(P[q] - P[i0], P[i1] - P[i0]) for q in run] + [4 * half * half]
-                q = run[int(np.searchsorted(t, 2 * half * half)) - 1]
+                t = [(X[v[q]] - x0) * (x1 - x0) + (Y[v[q]] - y0) * (y1 - y0) for q in run] + [4 * half * half]
+                q = run[bisect.bisect_left(t, 2 * half * half) - 1]
                 sp.append(("new", midpoint(s + q)))
         split[c] = (ic, sp)
     # the two faces of a joint are split together: a boundary edge with the same end points
     # as an edge that got a middle node (its twin across the joint) gets one too, so the
     # faces keep matching nodes (a slave face coarser than its master lets the master's new
     # nodes pass through it)
-    bpos = np.flatnonzero(boundary)
+    bpos = np.flatnonzero(boundary).tolist()
     twins = {}
     for pos in bpos:
-        pa, pb = tuple(m.nodes[a[pos]]), tuple(m.nodes[b[pos]])
-        twins.setdefault((min(pa, pb), max(pa, pb)), []).append(int(pos))
+        pa, pb = (X[a[pos]], Y[a[pos]]), (X[b[pos]], Y[b[pos]])
+        twins.setdefault((min(pa, pb), max(pa, pb)), []).append(pos)
     for pos in bpos:
         if int(ekey[pos]) in mid:
-            pa, pb = tuple(m.nodes[a[pos]]), tuple(m.nodes[b[pos]])
+            pa, pb = (X[a[pos]], Y[a[pos]]), (X[b[pos]], Y[b[pos]])
             for q in twins[(min(pa, pb), max(pa, pb))]:
                 midpoint(q)
-    # pass 2: new connectivity; every cell gets the new middle nodes of its edges
+    # pass 2: every cell's vertices with the new middle nodes of its edges (vectorized)
     new_nodes = np.vstack([m.nodes, np.asarray(new_xy).reshape(-1, 2)])
-    conn, ptr, parent = [], [0], []
+    has = np.zeros(len(ekey), bool)
+    mid_at = np.zeros(len(ekey), np.int64)
+    if mid:
+        ks = np.fromiter(mid.keys(), np.int64, len(mid))
+        vs = np.fromiter(mid.values(), np.int64, len(mid))
+        o = np.argsort(ks)
+        ks, vs = ks[o], vs[o]
+        i = np.minimum(np.searchsorted(ks, ekey), len(ks) - 1)
+        has = ks[i] == ekey
+        mid_at = vs[i]
+    bad = np.flatnonzero(has & is_fem[cell_of])
+    if len(bad):
+        c = int(cell_of[bad[0]])
+        raise MeshError(f"body {m.bodies[int(m.cell_body[c])][0]!r} is FEM: cell {c + 1} would take a "
+                        f"hanging node next to a split cell; use formulation = 'vem' or refinement by remeshing")
+    lens = 1 + has.astype(np.int64)
+    first = np.cumsum(lens) - lens             # position in augc of each old vertex
+    augc = np.empty(int(lens.sum()), np.int64)
+    augc[first] = m.conn
+    augc[first[has] + 1] = mid_at[has]
+    aptr = np.concatenate([[0], np.cumsum(np.add.reduceat(lens, m.ptr[:-1]))]) if m.ncell else np.zeros(1, np.int64)
+    augl, aptr_l, first_l = augc.tolist(), aptr.tolist(), first.tolist()
+    XN, YN = new_nodes[:, 0].tolist(), new_nodes[:, 1].tolist()
+    centres = []
+    parts, parent = [], []
+    marked_l = marked.tolist()
+    nn = len(new_nodes)
     for c in range(m.ncell):
-        s, e = m.ptr[c], m.ptr[c + 1]
-        aug, at = [], []         # augmented vertices; position in aug of each old vertex
-        for pos in range(s, e):
-            at.append(len(aug))
-            aug.append(int(m.conn[pos]))
-            k = int(ekey[pos])
-            if k in mid:
-                aug.append(mid[k])
-        if len(aug) > e - s and int(m.cell_body[c]) in fem:
-            raise MeshError(f"body {m.bodies[int(m.cell_body[c])][0]!r} is FEM: cell {c + 1} would take a "
-                            f"hanging node next to a split cell; use formulation = 'vem' or refinement by remeshing")
-        if c not in split:
-            conn.append(aug)
-            ptr.append(ptr[-1] + len(aug))
+        a0, a1 = aptr_l[c], aptr_l[c + 1]
+        if not marked_l[c]:
+            parts.append(augc[a0:a1])
             parent.append(c)
             continue
+        s = ptr_l[c]
+        aug = augl[a0:a1]
         ic, sp = split[c]
-        P = new_nodes[aug]
-        cut = []
-        for kind, v in sp:
-            cut.append(at[v] if kind == "old" else aug.index(v))
-        cen = new_nodes[m.conn[s:e][ic]].mean(0)
-        if not _in_kernel(P, cen):
-            cen = _kernel_center(P, f"cell {c + 1}")
-        ci = len(new_nodes)
-        new_nodes = np.vstack([new_nodes, cen])
+        cut = [first_l[s + v] - a0 if kind == "old" else aug.index(v) for kind, v in sp]
+        cx = sum(X[conn_l[s + i]] for i in ic) / len(ic)
+        cy = sum(Y[conn_l[s + i]] for i in ic) / len(ic)
+        if not _in_kernel_list([XN[q] for q in aug], [YN[q] for q in aug], cx, cy):
+            cx, cy = _kernel_center(new_nodes[aug], f"cell {c + 1}")
+        ci = nn + len(centres)
+        centres.append((cx, cy))
         na = len(aug)
         for j in range(len(ic)):
             p0, p1 = cut[j - 1], cut[j]
-            child = [aug[(p0 + t) % na] for t in range((p1 - p0) % na + 1)] + [ci]
-            conn.append(child)
-            ptr.append(ptr[-1] + len(child))
+            parts.append(np.array([aug[(p0 + t) % na] for t in range((p1 - p0) % na + 1)] + [ci], np.int64))
             parent.append(c)
     parent = np.asarray(parent, np.int64)
-    out = Mesh(new_nodes, np.asarray(ptr, np.int64), np.asarray([v for cc in conn for v in cc], np.int64),
+    new_nodes = np.vstack([new_nodes, np.asarray(centres, float).reshape(-1, 2)])
+    ptr = np.concatenate([[0], np.cumsum([len(q) for q in parts])]).astype(np.int64)
+    out = Mesh(new_nodes, ptr, np.concatenate(parts) if parts else np.zeros(0, np.int64),
                m.cell_body[parent].copy(), list(m.bodies), info=copy.deepcopy(m.info))
     _carry_sets(m, out, parent, mid, mid_edge)
     return out, parent
@@ -260,10 +315,12 @@ def _carry_sets(m, out, parent, mid, mid_edge):
         children.setdefault(int(p), []).append(i)
     for name, cells in m.elsets.items():
         out.elsets[name] = np.asarray(sorted(i for c in np.asarray(cells) for i in children[int(c)]), np.int64)
-    # directed edges of the new cells -> (cell, side)
+    # directed edges of the new cells whose parents hold a face of a surface -> (cell, side)
     a, b, cell, side = out.edges()
+    faces = np.concatenate([np.asarray(c, np.int64) for c, _ in m.esurfaces.values()] + [np.zeros(0, np.int64)])
+    keep = np.isin(parent[cell], faces)
     where = {}
-    for u, w, c, s in zip(a.tolist(), b.tolist(), cell.tolist(), side.tolist()):
+    for u, w, c, s in zip(a[keep].tolist(), b[keep].tolist(), cell[keep].tolist(), side[keep].tolist()):
         where.setdefault((u, w), []).append((c, s))
     n0 = len(m.nodes)
     for name, (cells, sides) in m.esurfaces.items():
