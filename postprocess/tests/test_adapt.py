@@ -163,3 +163,103 @@ def test_remesh_option_and_fem_refused(lshape, exe):
     with pytest.raises(adapt.AdaptError, match="FEM: L"):
         adapt.adapt(lshape / "lshape.inp", lshape / "fem.toml", 1e-3, lshape / "f", exe=exe, refine="split",
                     echo=lines.append)
+
+
+HERTZ_SCENE = """[mesh]
+formulation = "vem"
+[[body]]
+name = "DISC"
+half_disc = { center = [0.0, 20.0], radius = 10.0, core = 0.5 }
+mesher = "quad"
+divisions = [4, 4, 2]
+grading = { ratio = 0.3, radial_ratio = 0.4 }
+[[body]]
+name = "BLOCK"
+rectangle = [0.0, 0.0, 10.0, 10.0]
+mesher = "quad"
+divisions = [6, 5]
+grading = { point = [0.0, 10.0], ratio = 0.3 }
+[[selection]]
+name = "SYMMETRY"
+x = 0.0
+[[selection]]
+name = "BLOCK_BOTTOM"
+y = 0.0
+[[selection]]
+name = "ARC"
+circle = { center = [0.0, 20.0], radius = 10.0 }
+ymin = 20.0
+body = "DISC"
+[[contact]]
+name = "HERTZ"
+slave = "DISC"
+master = "BLOCK"
+slave_where = { circle = { center = [0.0, 20.0], radius = 10.0 }, ymax = 20.0 }
+master_where = { y = 10.0 }
+"""
+
+HERTZ_DECK = """*HEADING
+Hertz contact, small, the load spread over the upper arc
+*INCLUDE, INPUT=hz_mesh.inp
+*MATERIAL, NAME=DISC_MATERIAL
+*ELASTIC
+1.0e3, 0.3
+*MATERIAL, NAME=BLOCK_MATERIAL
+*ELASTIC
+1.0e6, 0.3
+*SOLID SECTION, ELSET=DISC, MATERIAL=DISC_MATERIAL
+1.0
+*SOLID SECTION, ELSET=BLOCK, MATERIAL=BLOCK_MATERIAL
+1.0
+*SURFACE INTERACTION, NAME=DISC_ON_BLOCK
+*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR
+1.0e5
+*CONTACT PAIR, INTERACTION=DISC_ON_BLOCK, TYPE=NODE TO SURFACE
+HERTZ_SLAVE, HERTZ_MASTER
+*BOUNDARY
+SYMMETRY, 1
+BLOCK_BOTTOM, 1, 2
+*STEP
+*STATIC
+*DSLOAD
+ARC, P, 10.0
+*NODE FILE
+U, RF
+*EL FILE
+S
+*CONTACT FILE
+CSTR
+*END STEP
+"""
+
+
+def test_split_keeps_contact_working(tmp_path, exe):
+    """Three cycles of splitting on a contact model: the surfaces written from the split
+    mesh carry the load through the contact in every cycle (the disc is held vertically by
+    the contact alone, so the block's support takes the whole load: the pressure 10 on the
+    quarter arc's chords has the vertical resultant 10 times their horizontal span), and the
+    contact zone gains slave nodes."""
+    (tmp_path / "hz.toml").write_text(HERTZ_SCENE)
+    (tmp_path / "hz.inp").write_text(HERTZ_DECK)
+    rows = adapt.adapt(tmp_path / "hz.inp", tmp_path / "hz.toml", 1e-4, tmp_path / "a", max_cycles=2, exe=exe,
+                       echo=lambda s: None)
+    assert len(rows) == 3 and rows[2]["estimate"] < rows[0]["estimate"]
+    slaves = []
+    for r in rows:
+        with h5py.File(tmp_path / "a" / f"cycle_{r['cycle']:02d}" / "hz.h5") as f:
+            st = f["steps/0001"]
+            names = [n.decode() if isinstance(n, bytes) else str(n) for n in st["RF_sets/names"][...]]
+            rf = st["RF_sets/RF"][...][names.index("BLOCK_BOTTOM")]
+            # the loaded chords run from (0, 30) to the arc's last node at y >= 20 (the graded
+            # arc has none at (10, 20)): vertical resultant 10 times that node's x
+            x = f["mesh/coordinates"][...]
+            ids = list(f["mesh/node_ids"][...])
+            text = (tmp_path / "a" / f"cycle_{r['cycle']:02d}" / "mesh.inp").read_text()
+            arc = [int(v) for v in text.split("*NSET, NSET=ARC\n")[1].split("*")[0].replace(",", " ").split()]
+            span = max(x[ids.index(v), 0] for v in arc)
+            # equilibrium through the contact; 1e-6: the contact iteration's force tolerance
+            assert rf[1] == pytest.approx(10.0 * span, rel=1e-6)
+            p = st["contact/pair_1/CPRESS"][...]
+            assert p.max() > 0
+            slaves.append(len(p))
+    assert slaves[0] < slaves[1] < slaves[2], slaves

@@ -2,10 +2,12 @@
 
 A marked cell is split at its geometric corners: the vertices where its boundary turns
 (a vertex on a straight run between two corners, a hanging node left by an earlier split of
-a neighbour, is no corner).  Each geometric side gets a split point: the vertex already on
-it nearest to its middle if it has one (the neighbour's earlier midpoint), else a new node
-at the middle of the side, shared with the cell on the other side of that mesh edge.  The
-cell becomes one quadrilateral per corner: split point before the corner, the corner (and
+a neighbour, is no corner; of two corners closer than SHORT times the cell's longest side
+the one that turns less is dropped, so that a short side does not make a sliver child).
+Each geometric side gets a split point: the vertex already on it nearest to its middle if
+one lies within a quarter of the side from it (the neighbour's earlier midpoint), else a new
+node at the middle of the mesh edge there, shared with the cell on the other side of that
+edge.  The cell becomes one quadrilateral per corner: split point before the corner, the corner (and
 the hanging nodes between), split point after it, and the centre, the mean of the corners
 (for a quadrilateral the centre of its bilinear map, so a quadrilateral splits into the
 images of the four sub-squares and the children stay as regular as their parent over
