@@ -1,9 +1,8 @@
 """vc-adapt (postprocess/vctools/adapt.py) on the L-shaped domain, whose re-entrant corner
 makes the stress singular (r^(lambda - 1), lambda = 0.5445 for the 270-degree corner): the
 energy error of uniform refinement falls like N^(-lambda/2) = N^-0.27 asymptotically, that of
-bulk-marked adaptive refinement like N^-1/2 (optimal for k = 1).  Measured on these meshes
-(estimated error against unknowns, docs/error-estimate.md): adaptive 0.47 over cycles 2-6,
-uniform 0.335 over its three levels (still pre-asymptotic)."""
+bulk-marked adaptive refinement like N^-1/2 (optimal for k = 1).  vc-adapt splits the marked
+cells (the default for VEM); remeshing with a size field is checked on two cycles."""
 import math
 
 import h5py
@@ -81,7 +80,9 @@ def test_adaptive_rate_on_lshape(lshape, exe):
         # the named selections survive remeshing: the deck's BOTTOM and TOP sets are there
         text = (c / "mesh.inp").read_text().upper()
         assert "NSET=BOTTOM" in text and "NSET=TOP" in text
-    assert all((lshape / "ad" / f"cycle_{k:02d}" / "size.npz").is_file() for k in range(len(rows) - 1))
+    # splitting: the scene is meshed once, every later mesh is the previous one split
+    assert not any((lshape / "ad" / f"cycle_{k:02d}" / "size.npz").exists() for k in range(len(rows)))
+    assert "split" in (lshape / "ad" / "cycle_01" / "mesh.inp").read_text().splitlines()[2]
     assert all(b["estimate"] < a["estimate"] for a, b in zip(rows, rows[1:]))
     # the marked cells gather at the corner: the smallest cells of the last mesh are there
     x = adapt.read_estimate(lshape / "ad" / f"cycle_{rows[-1]['cycle']:02d}" / "lshape.h5")
@@ -144,3 +145,121 @@ def test_size_field_grading(tmp_path):
     for bad in ("missing.npz", "bad.npz"):
         with pytest.raises(MeshError, match="grading field"):
             Grading([{"field": str(tmp_path / bad)}], "body 'B'")
+
+
+def test_remesh_option_and_fem_refused(lshape, exe):
+    lines = []
+    rows = adapt.adapt(lshape / "lshape.inp", lshape / "lshape.toml", 1e-3, lshape / "r", max_cycles=1,
+                       exe=exe, refine="remesh", echo=lines.append)
+    assert len(rows) == 2 and "after 1 cycles" in lines[-1]
+    # remeshing: the size field of cycle 0 made cycle 1's mesh, more cells where marked
+    assert (lshape / "r" / "cycle_00" / "size.npz").is_file()
+    assert rows[1]["cells"] > rows[0]["cells"] and rows[1]["estimate"] < rows[0]["estimate"]
+    # splitting FEM cells is refused with a message naming the FEM body (remesh instead)
+    (lshape / "fem.toml").write_text(SCENE.replace('plane = "strain"', 'plane = "strain"\nformulation = "fem"')
+                                     .replace('polygon = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], '
+                                              '[1.0, 2.0], [0.0, 2.0]]\ncells = 60',
+                                              'rectangle = [0.0, 0.0, 2.0, 2.0]\nmesher = "quad"'))
+    with pytest.raises(adapt.AdaptError, match="FEM: L"):
+        adapt.adapt(lshape / "lshape.inp", lshape / "fem.toml", 1e-3, lshape / "f", exe=exe, refine="split",
+                    echo=lines.append)
+
+
+HERTZ_SCENE = """[mesh]
+formulation = "vem"
+[[body]]
+name = "DISC"
+half_disc = { center = [0.0, 20.0], radius = 10.0, core = 0.5 }
+mesher = "quad"
+divisions = [4, 4, 2]
+grading = { ratio = 0.3, radial_ratio = 0.4 }
+[[body]]
+name = "BLOCK"
+rectangle = [0.0, 0.0, 10.0, 10.0]
+mesher = "quad"
+divisions = [6, 5]
+grading = { point = [0.0, 10.0], ratio = 0.3 }
+[[selection]]
+name = "SYMMETRY"
+x = 0.0
+[[selection]]
+name = "BLOCK_BOTTOM"
+y = 0.0
+[[selection]]
+name = "ARC"
+circle = { center = [0.0, 20.0], radius = 10.0 }
+ymin = 20.0
+body = "DISC"
+[[contact]]
+name = "HERTZ"
+slave = "DISC"
+master = "BLOCK"
+slave_where = { circle = { center = [0.0, 20.0], radius = 10.0 }, ymax = 20.0 }
+master_where = { y = 10.0 }
+"""
+
+HERTZ_DECK = """*HEADING
+Hertz contact, small, the load spread over the upper arc
+*INCLUDE, INPUT=hz_mesh.inp
+*MATERIAL, NAME=DISC_MATERIAL
+*ELASTIC
+1.0e3, 0.3
+*MATERIAL, NAME=BLOCK_MATERIAL
+*ELASTIC
+1.0e6, 0.3
+*SOLID SECTION, ELSET=DISC, MATERIAL=DISC_MATERIAL
+1.0
+*SOLID SECTION, ELSET=BLOCK, MATERIAL=BLOCK_MATERIAL
+1.0
+*SURFACE INTERACTION, NAME=DISC_ON_BLOCK
+*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR
+1.0e5
+*CONTACT PAIR, INTERACTION=DISC_ON_BLOCK, TYPE=NODE TO SURFACE
+HERTZ_SLAVE, HERTZ_MASTER
+*BOUNDARY
+SYMMETRY, 1
+BLOCK_BOTTOM, 1, 2
+*STEP
+*STATIC
+*DSLOAD
+ARC, P, 10.0
+*NODE FILE
+U, RF
+*EL FILE
+S
+*CONTACT FILE
+CSTR
+*END STEP
+"""
+
+
+def test_split_keeps_contact_working(tmp_path, exe):
+    """Three cycles of splitting on a contact model: the surfaces written from the split
+    mesh carry the load through the contact in every cycle (the disc is held vertically by
+    the contact alone, so the block's support takes the whole load: the pressure 10 on the
+    quarter arc's chords has the vertical resultant 10 times their horizontal span), and the
+    contact zone gains slave nodes."""
+    (tmp_path / "hz.toml").write_text(HERTZ_SCENE)
+    (tmp_path / "hz.inp").write_text(HERTZ_DECK)
+    rows = adapt.adapt(tmp_path / "hz.inp", tmp_path / "hz.toml", 1e-4, tmp_path / "a", max_cycles=2, exe=exe,
+                       echo=lambda s: None)
+    assert len(rows) == 3 and rows[2]["estimate"] < rows[0]["estimate"]
+    slaves = []
+    for r in rows:
+        with h5py.File(tmp_path / "a" / f"cycle_{r['cycle']:02d}" / "hz.h5") as f:
+            st = f["steps/0001"]
+            names = [n.decode() if isinstance(n, bytes) else str(n) for n in st["RF_sets/names"][...]]
+            rf = st["RF_sets/RF"][...][names.index("BLOCK_BOTTOM")]
+            # the loaded chords run from (0, 30) to the arc's last node at y >= 20 (the graded
+            # arc has none at (10, 20)): vertical resultant 10 times that node's x
+            x = f["mesh/coordinates"][...]
+            ids = list(f["mesh/node_ids"][...])
+            text = (tmp_path / "a" / f"cycle_{r['cycle']:02d}" / "mesh.inp").read_text()
+            arc = [int(v) for v in text.split("*NSET, NSET=ARC\n")[1].split("*")[0].replace(",", " ").split()]
+            span = max(x[ids.index(v), 0] for v in arc)
+            # equilibrium through the contact; 1e-6: the contact iteration's force tolerance
+            assert rf[1] == pytest.approx(10.0 * span, rel=1e-6)
+            p = st["contact/pair_1/CPRESS"][...]
+            assert p.max() > 0
+            slaves.append(len(p))
+    assert slaves[0] < slaves[1] < slaves[2], slaves

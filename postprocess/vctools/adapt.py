@@ -1,21 +1,30 @@
 """vc-adapt: adaptive mesh refinement driven by vemcontact's error estimate.
 
     vc-adapt DECK --scene SCENE.toml --target-error 1% [--max-unknowns N] [-o DIR]
+             [--refine split|remesh]
 
-Each cycle meshes the scene (vctools.mesh), runs the deck on that mesh, and reads the
-error estimate of every step from the HDF5 results (ERROR_INDICATOR, error_estimate,
+The first cycle meshes the scene (vctools.mesh); each cycle runs the deck on its mesh and
+reads the error estimate of every step from the HDF5 results (ERROR_INDICATOR, error_estimate,
 energy_norm: docs/error-estimate.md).  The loop stops when the estimated relative energy
 error of every step is at most the target, when the next mesh would exceed the budget of
 unknowns, or after --max-cycles.  Otherwise the cells are marked by the bulk (Doerfler)
 criterion on the step with the largest relative error: the fewest cells, largest
-indicators first, that hold the fraction theta of its squared estimate.  Marked cells get
-half their size (four times the cells per area), the others keep theirs; the next mesh
-is the scene meshed again with that size field (a `grading = [{ field = ... }]` for every
-Voronoi body, its `cells` the sum over its old cells), so joints, contact surfaces and
-named selections are made anew by the mesher exactly as in the scene.  Structured bodies
-(quad, tri) are meshed as the scene says, unrefined.
+indicators first, that hold the fraction theta of its squared estimate.  The next mesh:
 
-Every cycle is kept in DIR/cycle_NN/: the size field (size.npz), the mesh (mesh.inp), the
+- split (the default when every body is VEM): the marked cells of the previous mesh are
+  split into quadrilaterals (vctools.mesh.refine: centre and side midpoints; a midpoint on
+  an unmarked neighbour is one more vertex of it, which the virtual element takes as is).
+  Joints, contact surfaces, loaded surfaces, node and element sets are carried over; no
+  remeshing after the first cycle.  Refused for FEM bodies (a FEM cell takes no hanging
+  node).
+- remesh (the default with FEM bodies): marked cells get half their size (four times the
+  cells per area), the others keep theirs; the scene is meshed again with that size field
+  (a `grading = [{ field = ... }]` for every Voronoi body, its `cells` the sum over its old
+  cells), so joints, contact surfaces and named selections are made anew by the mesher
+  exactly as in the scene.  Structured bodies (quad, tri) are meshed as the scene says,
+  unrefined.
+
+Every cycle is kept in DIR/cycle_NN/: the size field (size.npz, remesh only), the mesh (mesh.inp), the
 deck (JOB.inp, its *INCLUDE of the mesh pointing at mesh.inp, other includes at the
 original files) and vemcontact's results and log.  DIR/adapt.csv has the table that is
 also printed: cycle, cells, unknowns, estimated relative error, estimate, mesh time, run time.
@@ -40,7 +49,8 @@ import numpy as np
 from .mesh.deck import write_deck
 from .mesh.errors import MeshError
 from .mesh.geometry import points_in_polygon
-from .mesh.scene import build, load
+from .mesh.refine import refine as split_cells
+from .mesh.scene import FemType, build, load
 
 ROOT = Path(__file__).resolve().parents[2]
 INCLUDE = re.compile(r"^(\*include\s*,.*?input\s*=\s*)([^,\s]+)(.*)$", re.IGNORECASE)
@@ -142,6 +152,17 @@ def read_estimate(h5path):
     return steps, x, off, conn
 
 
+def read_element_ids(h5path):
+    """User element ids of the HDF5 mesh, in its element order."""
+    with h5py.File(h5path, "r") as f:
+        return f["mesh/element_ids"][...].astype(np.int64)
+
+
+def fem_bodies(m):
+    """Names of the mesh's FEM bodies."""
+    return [name for name, et in m.bodies if isinstance(et, FemType) or str(et).upper().startswith("C")]
+
+
 def cell_geometry(x, off, conn):
     """Centroids (n, 2) and areas (n,) of the cells (shoelace)."""
     n = np.diff(off)
@@ -216,34 +237,53 @@ def refined_scene(scene, centroids, area, factor, field_path):
 
 
 def adapt(deck, scene_path, target, out_dir, max_unknowns=1_000_000, max_cycles=10, theta=0.5,
-          uniform=False, exe=None, include=None, processes=1, lloyd=None, echo=print):
-    """Run the adaptive loop; returns the table rows (dicts).  `lloyd`: Lloyd iterations of
-    the refined cycles' meshes (default: the scene's)."""
+          uniform=False, exe=None, include=None, processes=1, lloyd=None, refine="auto", echo=print):
+    """Run the adaptive loop; returns the table rows (dicts).  `refine`: "split", "remesh"
+    or "auto" (split if every body is VEM).  `lloyd`: Lloyd iterations of the remeshed
+    cycles' meshes (default: the scene's)."""
     deck = Path(deck).resolve()
     if not deck.is_file():
         raise AdaptError(f"deck not found: {deck}")
     scene0 = load(scene_path)
     if scene0.get("variant"):
         raise AdaptError(f"{scene_path}: scenes with [[variant]] are not supported; keep one variant")
-    if not voronoi_bodies(scene0):
-        raise AdaptError(f"{scene_path}: no Voronoi body to refine (structured bodies are not refined)")
+    if refine not in ("auto", "split", "remesh"):
+        raise AdaptError(f"--refine must be split, remesh or auto, got {refine!r}")
     exe = find_executable(exe)
     which = mesh_include(deck, include)
     out_dir = Path(out_dir).resolve()
     out_dir.mkdir(parents=True, exist_ok=True)
     rows = []
     scene = scene0
+    pending = None
     echo(f"{'cycle':>5} {'cells':>8} {'unknowns':>9} {'rel. error':>10} {'estimate':>11} {'mesh s':>7} {'run s':>7}")
     for cycle in range(max_cycles + 1):
         cdir = out_dir / f"cycle_{cycle:02d}"
         cdir.mkdir(exist_ok=True)
         t0 = time.perf_counter()
-        try:
-            m = build(scene, processes=processes)
-        except MeshError as e:
-            raise AdaptError(f"cycle {cycle}: meshing failed: {e}") from None
+        if pending is not None:
+            try:
+                m = split_cells(*pending)[0]      # the previous mesh, its marked cells split
+            except MeshError as e:
+                raise AdaptError(f"cycle {cycle}: splitting failed: {e}") from None
+        else:
+            try:
+                m = build(scene, processes=processes)
+            except MeshError as e:
+                raise AdaptError(f"cycle {cycle}: meshing failed: {e}") from None
+        if cycle == 0:
+            fem = fem_bodies(m)
+            if refine == "auto":
+                refine = "remesh" if fem else "split"
+            if refine == "split" and fem:
+                raise AdaptError(f"{scene_path}: refinement by splitting needs VEM bodies (a FEM cell takes no "
+                                 f"hanging node); FEM: {', '.join(fem)}; use --refine remesh or formulation = 'vem'")
+            if refine == "remesh" and not voronoi_bodies(scene0):
+                raise AdaptError(f"{scene_path}: no Voronoi body to remesh (structured bodies are not remeshed; "
+                                 "with VEM bodies use --refine split)")
+        how = "the scene meshed" if pending is None else "the marked cells of cycle {} split".format(cycle - 1)
         write_deck(m, cdir / "mesh.inp", [f"vemcontact mesh written by vctools.mesh (vc-adapt cycle {cycle})",
-                                          f"scene: {scene_path}"])
+                                          f"scene: {scene_path}", how])
         t_mesh = time.perf_counter() - t0
         cdeck = write_cycle_deck(deck, which, cdir)
         t0 = time.perf_counter()
@@ -265,6 +305,11 @@ def adapt(deck, scene_path, target, out_dir, max_unknowns=1_000_000, max_cycles=
             break
         cen, area = cell_geometry(x, off, conn)
         mark = np.ones(len(eta), bool) if uniform else doerfler(eta, theta)
+        if refine == "split":
+            # cells by their deck ids (write_deck: cell index + 1), not the HDF5 order
+            cmark = np.zeros(m.ncell, bool)
+            cmark[read_element_ids(cdir / (cdeck.stem + ".h5"))[mark] - 1] = True
+            mark = cmark
         factor = np.where(mark, 4.0, 1.0)
         predicted = row["unknowns"] * factor.sum() / len(factor)
         if predicted > max_unknowns:
@@ -273,6 +318,9 @@ def adapt(deck, scene_path, target, out_dir, max_unknowns=1_000_000, max_cycles=
         if cycle == max_cycles:
             echo(f"stopped after {max_cycles} cycles")
             break
+        if refine == "split":
+            pending = (m, mark)
+            continue
         scene = refined_scene(scene0, cen, area, factor, cdir / "size.npz")
         if lloyd is not None:
             scene.setdefault("mesh", {})["lloyd"] = int(lloyd)
@@ -301,7 +349,10 @@ def _parser():
     p.add_argument("-o", "--output", help="output folder (default: DECK_adapt next to the deck)")
     p.add_argument("--exe", help="vemcontact executable (default: VEMCONTACT_EXE, PATH, the build tree)")
     p.add_argument("--processes", type=int, default=1, help="mesher worker processes (default 1)")
-    p.add_argument("--lloyd", type=int, help="Lloyd iterations of the refined meshes (default: the scene's [mesh] lloyd)")
+    p.add_argument("--refine", choices=("auto", "split", "remesh"), default="auto",
+                   help="split the marked cells of the previous mesh (VEM only) or remesh the scene with a size "
+                   "field; default: split if every body is VEM, else remesh")
+    p.add_argument("--lloyd", type=int, help="Lloyd iterations of the remeshed meshes (default: the scene's [mesh] lloyd)")
     return p
 
 
@@ -313,7 +364,7 @@ def main(argv=None):
         out = a.output or str(Path(a.deck).with_suffix("")) + "_adapt"
         adapt(a.deck, a.scene, parse_fraction(a.target_error), out, max_unknowns=a.max_unknowns,
               max_cycles=a.max_cycles, theta=a.theta, uniform=a.uniform, exe=a.exe, include=a.include,
-              processes=a.processes, lloyd=a.lloyd)
+              processes=a.processes, lloyd=a.lloyd, refine=a.refine)
     except (AdaptError, MeshError) as e:
         print(f"vc-adapt: error: {e}", file=sys.stderr)
         return 2

@@ -104,6 +104,7 @@ def build(scene, seed=None, verbose=False, processes=None):
     meshes = []
     order = []
     arcs = []     # (center, radius) of the circular boundaries, for second-order FEM sides
+    arc_bodies = []   # (body name, center, radius): m.info["arcs"], for refinement by splitting
     for k, b in enumerate(bodies):
         name = b.get("name")
         if not name:
@@ -152,6 +153,7 @@ def build(scene, seed=None, verbose=False, processes=None):
         elif shape == "half_disc":
             hd = b["half_disc"]
             arcs.append((hd.get("center", [0, 0]), float(hd["radius"])))
+            arc_bodies.append((name, list(hd.get("center", [0, 0])), float(hd["radius"])))
             m = structured.half_disc(name, hd.get("center", [0, 0]), hd["radius"], b.get("divisions", [4, 4, 4]),
                                      mesher, et, float(gr.get("ratio", 1.0)), float(gr.get("radial_ratio", 1.0)),
                                      float(hd.get("core", 0.5)))
@@ -197,6 +199,7 @@ def build(scene, seed=None, verbose=False, processes=None):
                                         per_tile=int(opts.get("tile", 4000)), processes=processes, verbose=verbose))
             gi += 1
     m = concatenate(meshes)
+    m.info["arcs"] = arc_bodies
     counts = np.diff(m.ptr)
     for k, (bname, et) in enumerate(m.bodies):
         if isinstance(et, FemType):
