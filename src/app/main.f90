@@ -64,6 +64,7 @@ program vemcontact_main
    opts%out_dir = cli%out_dir
    opts%job = cli%job
    opts%ordering = cli%ordering
+   opts%solver = cli%solver
    opts%write_matrix = cli%write_matrix
    opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)

@@ -1,0 +1,51 @@
+!> The linear solver backends by name: the names the command line takes and the
+!> `linear_solver_t` of a name.
+module vemcontact_solver_factory
+   use vemcontact_error, only: error_t, fatal_error, err_input
+   use vemcontact_solver_linear_solver, only: linear_solver_t
+   use vemcontact_solver_cholmod, only: cholmod_solver_t
+   implicit none
+   private
+
+   public :: solver_kind, solver_names, make_solver
+
+   !> The backends: `auto` lets the driver choose (CHOLMOD for every size today).
+   integer, parameter, public :: solver_auto = 0, solver_cholmod = 1
+   !> Names of the backends, indexed by solver_*.
+   character(len=*), parameter :: names(0:1) = [character(len=7) :: 'auto', 'cholmod']
+
+contains
+
+   !> The solver_* of `name` (lower case, as on the command line); -1 if unknown.
+   pure integer function solver_kind(name) result(k)
+      character(len=*), intent(in) :: name
+      integer :: i
+      k = -1
+      do i = lbound(names, 1), ubound(names, 1)
+         if (trim(names(i)) == name) k = i
+      end do
+   end function solver_kind
+
+   !> 'auto, cholmod': the names solver_kind knows, for messages and help.
+   pure function solver_names() result(s)
+      character(len=:), allocatable :: s
+      integer :: i
+      s = trim(names(lbound(names, 1)))
+      do i = lbound(names, 1) + 1, ubound(names, 1)
+         s = s//', '//trim(names(i))
+      end do
+   end function solver_names
+
+   !> A new solver of kind `kind` (solver_*); `auto` is CHOLMOD.
+   subroutine make_solver(kind, solver, error)
+      integer, intent(in) :: kind
+      class(linear_solver_t), allocatable, intent(out) :: solver
+      type(error_t), allocatable, intent(out) :: error
+      select case (kind)
+      case (solver_auto, solver_cholmod)
+         allocate (cholmod_solver_t :: solver)
+      case default
+         call fatal_error(error, 'error: unknown linear solver (known: '//solver_names()//')', err_input)
+      end select
+   end subroutine make_solver
+end module vemcontact_solver_factory
