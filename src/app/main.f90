@@ -17,6 +17,8 @@ program vemcontact_main
    use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
+   use vemcontact_solver_factory, only: uses_petsc
+   use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -65,6 +67,11 @@ program vemcontact_main
    opts%job = cli%job
    opts%ordering = cli%ordering
    opts%solver = cli%solver
+   ! PETSc and MPI only for a PETSc solver: the default run never starts MPI
+   if (uses_petsc(cli%solver)) then
+      call petsc_initialize(cli%petsc_options, error)
+      if (allocated(error)) call fail(error)
+   end if
    opts%write_matrix = cli%write_matrix
    opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)
@@ -72,6 +79,7 @@ program vemcontact_main
    call log%phase('total', wall_time() - tstart)
    call log%close(error)
    if (allocated(error)) call fail(error)
+   call petsc_finalize()
    call exit_process(0)
 
 contains
@@ -85,6 +93,7 @@ contains
          call log%say(err%message)
          call log%close()
       end if
+      call petsc_finalize()
       call exit_process(err%code)
    end subroutine fail
 end program vemcontact_main

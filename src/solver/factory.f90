@@ -4,15 +4,18 @@ module vemcontact_solver_factory
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_solver_linear_solver, only: linear_solver_t
    use vemcontact_solver_cholmod, only: cholmod_solver_t
+   use vemcontact_solver_petsc, only: petsc_solver_t, petsc_gamg, petsc_hypre, petsc_mumps
    implicit none
    private
 
-   public :: solver_kind, solver_names, make_solver
+   public :: solver_kind, solver_names, make_solver, uses_petsc
 
-   !> The backends: `auto` lets the driver choose (CHOLMOD for every size today).
-   integer, parameter, public :: solver_auto = 0, solver_cholmod = 1
+   !> The backends: `auto` lets the driver choose (CHOLMOD for every size today);
+   !> gamg, hypre and mumps are PETSc's (vemcontact_solver_petsc).
+   integer, parameter, public :: solver_auto = 0, solver_cholmod = 1, solver_gamg = 2, solver_hypre = 3, &
+      solver_mumps = 4
    !> Names of the backends, indexed by solver_*.
-   character(len=*), parameter :: names(0:1) = [character(len=7) :: 'auto', 'cholmod']
+   character(len=*), parameter :: names(0:4) = [character(len=7) :: 'auto', 'cholmod', 'gamg', 'hypre', 'mumps']
 
 contains
 
@@ -26,7 +29,7 @@ contains
       end do
    end function solver_kind
 
-   !> 'auto, cholmod': the names solver_kind knows, for messages and help.
+   !> 'auto, cholmod, gamg, hypre, mumps': the names solver_kind knows, for messages and help.
    pure function solver_names() result(s)
       character(len=:), allocatable :: s
       integer :: i
@@ -44,8 +47,21 @@ contains
       select case (kind)
       case (solver_auto, solver_cholmod)
          allocate (cholmod_solver_t :: solver)
+      case (solver_gamg, solver_hypre, solver_mumps)
+         allocate (petsc_solver_t :: solver)
+         select type (solver)
+         type is (petsc_solver_t)
+            solver%method = merge(petsc_gamg, merge(petsc_hypre, petsc_mumps, kind == solver_hypre), &
+                                  kind == solver_gamg)
+         end select
       case default
          call fatal_error(error, 'error: unknown linear solver (known: '//solver_names()//')', err_input)
       end select
    end subroutine make_solver
+
+   !> Whether the backend `kind` runs on PETSc (and MPI).
+   pure logical function uses_petsc(kind)
+      integer, intent(in) :: kind
+      uses_petsc = kind == solver_gamg .or. kind == solver_hypre .or. kind == solver_mumps
+   end function uses_petsc
 end module vemcontact_solver_factory

@@ -80,3 +80,27 @@ vc_deck_test(err_range_modulus ${VC_DECKS}/err_range_modulus.inp 1
   "err_range_modulus.inp:26: error: Young's modulus of material UNIT = 1.00E-307")
 vc_deck_test(err_range_product ${VC_DECKS}/err_range_product.inp 1
   "err_range_product.inp:29: error: the displacement the loads make .* is about 1e270[)], beyond 1e-250 .. 1e250")
+
+# The PETSc solvers (gamg, hypre, mumps) against CHOLMOD on a VEM cantilever, a
+# polygon mesh, a Voronoi contact deck and an FEM contact deck, within tolerances
+# derived from their stopping rules (compare_solvers.py); skipped, saying why,
+# when CMake found no PETSc
+if(VC_HAVE_PETSC)
+  add_test(NAME petsc_solvers
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py" $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers"
+            "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp"
+            "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp" "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
+else()
+  add_test(NAME petsc_solvers COMMAND ${CMAKE_COMMAND} -E echo
+    "skipped: vemcontact was built without PETSc (pkg-config PETSc not found; scripts/install-deps.sh installs petsc-dev)")
+  set_tests_properties(petsc_solvers PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+endif()
+set_tests_properties(petsc_solvers PROPERTIES LABELS deck)
+# without PETSc, --solver gamg stops with a clear message, exit status 1
+if(NOT VC_HAVE_PETSC)
+  vc_deck_test(solver_gamg_without_petsc "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" 1
+    "built without PETSc")
+endif()
+add_test(NAME cli_unknown_solver COMMAND vemcontact --solver frobnicate x.inp)
+set_tests_properties(cli_unknown_solver PROPERTIES PASS_REGULAR_EXPRESSION "--solver takes auto, cholmod, gamg, hypre, mumps")
