@@ -7,7 +7,7 @@
 !> 4 solver failure, 5 internal error.
 program vemcontact_main
    use vemcontact_kinds, only: wp
-   use vemcontact_error, only: error_t
+   use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_model, only: model_t
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
    use vemcontact_log, only: logger_t
@@ -17,8 +17,8 @@ program vemcontact_main
    use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
-   use vemcontact_solver_factory, only: uses_petsc
-   use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize
+   use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg
+   use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -28,7 +28,9 @@ program vemcontact_main
    type(run_options_t) :: opts
    type(job_lock_t) :: lock
    real(wp) :: t0, tstart
-   integer :: nremoved, iw
+   integer :: nremoved, iw, rank
+   character(len=:), allocatable :: job
+   character(len=16) :: buf
 
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
@@ -42,16 +44,43 @@ program vemcontact_main
    end if
 
    tstart = wall_time()
+   ! PETSc and MPI only for a PETSc solver or under an MPI launcher: the default run
+   ! never starts MPI.  With several processes every one runs the analysis (the
+   ! solves are distributed); rank 0 writes the results, the others write theirs
+   ! as JOB.rankN and remove them at the end.
+   rank = 0
+   job = cli%job
+   if (uses_petsc(cli%solver) .or. mpi_launched()) then
+      call petsc_initialize(cli%petsc_options, error)
+      if (allocated(error)) call fail(error)
+      if (petsc_ranks() > 1) then
+         if (cli%solver == solver_auto) cli%solver = solver_gamg
+         if (.not. uses_petsc(cli%solver)) then
+            call fatal_error(error, 'error: --solver cholmod runs on one process; under an MPI launcher '// &
+                             'with several processes use --solver gamg, hypre or mumps', err_input)
+            call fail(error)
+         end if
+         rank = petsc_rank()
+         if (rank > 0) then
+            write (buf, '(i0)') rank
+            job = cli%job//'.rank'//trim(buf)
+         end if
+      end if
+   end if
    call make_directory(cli%out_dir, error)
    if (allocated(error)) call fail(error)
-   ! held until the process ends
-   call lock_job(cli%out_dir//'/'//cli%job//'.lock', lock, error)
+   if (rank == 0) then
+      ! held until the process ends
+      call lock_job(cli%out_dir//'/'//job//'.lock', lock, error)
+      if (allocated(error)) call fail(error)
+   end if
+   call remove_job_files(cli%out_dir, job, nremoved, error)
    if (allocated(error)) call fail(error)
-   call remove_job_files(cli%out_dir, cli%job, nremoved, error)
-   if (allocated(error)) call fail(error)
-   log%quiet = cli%quiet
-   call log%open(cli%out_dir//'/'//cli%job//'.log', error)
-   if (allocated(error)) call fail(error)
+   log%quiet = cli%quiet .or. rank > 0
+   if (rank == 0) then
+      call log%open(cli%out_dir//'/'//job//'.log', error)
+      if (allocated(error)) call fail(error)
+   end if
    call log%say(version_text()//': job '//cli%job//', deck '//cli%deck)
 
    t0 = wall_time()
@@ -64,14 +93,9 @@ program vemcontact_main
    call log%phase('read', wall_time() - t0)
 
    opts%out_dir = cli%out_dir
-   opts%job = cli%job
+   opts%job = job
    opts%ordering = cli%ordering
    opts%solver = cli%solver
-   ! PETSc and MPI only for a PETSc solver: the default run never starts MPI
-   if (uses_petsc(cli%solver)) then
-      call petsc_initialize(cli%petsc_options, error)
-      if (allocated(error)) call fail(error)
-   end if
    opts%write_matrix = cli%write_matrix
    opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)
@@ -79,6 +103,10 @@ program vemcontact_main
    call log%phase('total', wall_time() - tstart)
    call log%close(error)
    if (allocated(error)) call fail(error)
+   if (rank > 0) then
+      call remove_job_files(cli%out_dir, job, nremoved, error)
+      if (allocated(error)) call fail(error)
+   end if
    call petsc_finalize()
    call exit_process(0)
 

@@ -145,8 +145,8 @@ contains
 
       t0 = wall_time()
       call self%solver%release()
-      if (self%ordering == ordering_metis .or. &
-          (self%ordering == ordering_auto .and. model%nnode >= metis_threshold)) then
+      if (self%solver%takes_ordering .and. (self%ordering == ordering_metis .or. &
+          (self%ordering == ordering_auto .and. model%nnode >= metis_threshold))) then
          allocate (perm(2*model%nnode))
          call nodal_metis_ordering(model%nnode, adj_ptr, adj, perm, error)
          if (allocated(error)) return

@@ -53,6 +53,7 @@ contains
          type is (petsc_solver_t)
             solver%method = merge(petsc_gamg, merge(petsc_hypre, petsc_mumps, kind == solver_hypre), &
                                   kind == solver_gamg)
+            solver%takes_ordering = .false.
          end select
       case default
          call fatal_error(error, 'error: unknown linear solver (known: '//solver_names()//')', err_input)

@@ -32,6 +32,9 @@ module vemcontact_solver_linear_solver
       real(wp) :: flops = 0.0_wp
       !> Ordering used by the last analysis ('amd', 'metis', ...; unallocated if none).
       character(len=:), allocatable :: ordering
+      !> Whether `analyze` uses the `perm` it is given (a direct solver's fill-reducing
+      !> ordering): callers compute one only then.  vemcontact_solver_factory sets it.
+      logical :: takes_ordering = .true.
    contains
       procedure(analyze_i), deferred :: analyze
       procedure(factorize_i), deferred :: factorize

@@ -9,6 +9,10 @@
 !> variable, the string given to petsc_initialize) overrides the defaults below,
 !> for example `-ksp_rtol 1e-12` or `-pc_gamg_threshold 0.02`.
 !>
+!> Under MPI every process runs the driver with the same data and calls these
+!> procedures together; the matrix and the solve are distributed by rows (the
+!> assembly is not: every process assembles the whole matrix in this version).
+!>
 !> Stopping rule of CG: the true (unpreconditioned) residual |b - A x|_2 <=
 !> rtol |b|_2 with rtol = 1e-10 (`default_rtol`).  The relative error of x is
 !> at most cond(A) rtol; the stiffness matrices of 1e5-1e6 unknowns have
@@ -31,7 +35,7 @@ module vemcontact_solver_petsc
    implicit none
    private
 
-   public :: petsc_solver_t, petsc_initialize, petsc_finalize, petsc_ranks
+   public :: petsc_solver_t, petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
 
    !> The methods: CG + GAMG, CG + hypre BoomerAMG, MUMPS Cholesky (petsc_shim.c's kinds).
    integer, parameter, public :: petsc_gamg = 1, petsc_hypre = 2, petsc_mumps = 3
@@ -75,6 +79,10 @@ module vemcontact_solver_petsc
       integer(c_int) function vc_petsc_comm_size() bind(c, name='vc_petsc_comm_size')
          import :: c_int
       end function vc_petsc_comm_size
+
+      integer(c_int) function vc_petsc_comm_rank() bind(c, name='vc_petsc_comm_rank')
+         import :: c_int
+      end function vc_petsc_comm_rank
 
       integer(c_int) function vc_petsc_create(handle, kind) bind(c, name='vc_petsc_create')
          import :: c_int, c_ptr
@@ -152,6 +160,24 @@ contains
       petsc_ranks = int(vc_petsc_comm_size())
    end function petsc_ranks
 
+   !> This process's MPI rank (0 while PETSc is not running).
+   integer function petsc_rank()
+      petsc_rank = int(vc_petsc_comm_rank())
+   end function petsc_rank
+
+   !> Whether the program was started by an MPI launcher (mpirun, mpiexec, srun):
+   !> the variables Open MPI, MPICH and PMIx set for the processes they start.
+   logical function mpi_launched()
+      character(len=*), parameter :: names(4) = [character(len=20) :: 'OMPI_COMM_WORLD_SIZE', 'PMI_SIZE', &
+         'PMIX_RANK', 'PMI_RANK']
+      integer :: k, st
+      mpi_launched = .false.
+      do k = 1, size(names)
+         call get_environment_variable(trim(names(k)), status=st)
+         if (st == 0) mpi_launched = .true.
+      end do
+   end function mpi_launched
+
    !> The matrix of the pattern of `a` and the solver; for GAMG, the near null
    !> space of the rigid-body motions of the nodes `coords(2, nnode)`.  `perm` is
    !> not used (PETSc's solvers order for themselves).
@@ -176,11 +202,6 @@ contains
       st = vc_petsc_initialize(c_null_char)
       if (st /= st_ok) then
          call fatal_error(error, 'error: '//status_text(st, c_null_ptr), err_solver)
-         return
-      end if
-      if (vc_petsc_comm_size() > 1) then
-         call fatal_error(error, 'error: the PETSc solvers run on one MPI process only in this version', &
-                          err_input)
          return
       end if
       call vc_petsc_free(self%handle)
@@ -298,6 +319,8 @@ contains
       case default
          s = 'mumps (PETSc + MUMPS Cholesky)'
       end select
+      write (buf, '(i0)') vc_petsc_comm_size()
+      if (vc_petsc_comm_size() > 1) s = s//' on '//trim(buf)//' MPI processes'
    end function describe
 
    impure elemental subroutine finalize(self)

@@ -22,8 +22,11 @@
  * Without PETSc (VC_HAVE_PETSC undefined: CMake did not find it) every entry
  * point returns VC_PETSC_NOT_BUILT.
  *
- * Only serial (one MPI process) matrices are built here: the global matrix is
- * on PETSC_COMM_SELF.
+ * Under MPI (PETSC_COMM_WORLD of several processes) every process calls every
+ * entry point with the same, replicated arguments (the driver runs on every
+ * process); the matrix is distributed by rows, whole nodes (2 rows) per process,
+ * each process inserting its own rows; the solution is gathered back to every
+ * process, so that the callers stay identical.
  */
 #include <fenv.h>
 #include <stdint.h>
@@ -49,9 +52,12 @@ enum { VC_PETSC_GAMG = 1, VC_PETSC_HYPRE = 2, VC_PETSC_MUMPS = 3 };
 typedef struct {
     int kind;
     PetscInt n;
+    PetscInt rstart, nloc; /* the rows of this process */
     Mat a;
     KSP ksp;
     Vec b, x;
+    Vec xall;             /* x gathered on every process */
+    VecScatter gather;
     PetscInt *row_ptr;    /* full CSR pattern, 0-based */
     PetscInt *col_idx;
     int64_t ncsc;         /* entries of the upper-triangle CSC */
@@ -161,6 +167,16 @@ int vc_petsc_comm_size(void)
     return (int)size;
 }
 
+/* This process's rank (0 before PETSc is initialized). */
+int vc_petsc_comm_rank(void)
+{
+    PetscMPIInt rank = 0;
+    PetscBool done_init = PETSC_FALSE;
+    PetscInitialized(&done_init);
+    if (done_init) MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    return (int)rank;
+}
+
 int vc_petsc_create(void **handle, int kind)
 {
     vc_petsc_t *h;
@@ -179,6 +195,8 @@ static void free_objects(vc_petsc_t *h)
     if (h->a) MatDestroy(&h->a);
     if (h->b) VecDestroy(&h->b);
     if (h->x) VecDestroy(&h->x);
+    if (h->gather) VecScatterDestroy(&h->gather);
+    if (h->xall) VecDestroy(&h->xall);
     free(h->row_ptr);
     free(h->col_idx);
     free(h->pos_upper);
@@ -231,6 +249,9 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
     Vec xy = NULL;
     MatNullSpace ns = NULL;
     PC pc;
+    PetscInt *lptr = NULL;
+    PetscMPIInt size = 1, rank = 0;
+    int64_t nn, base, rem, lnodes, snode;
 
     *info = 0;
     if (!h) return VC_PETSC_ORDER;
@@ -302,29 +323,52 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
         }
     }
 
-    CHECK(MatCreate(PETSC_COMM_SELF, &h->a), "MatCreate", h->message);
-    CHECK(MatSetSizes(h->a, h->n, h->n, h->n, h->n), "MatSetSizes", h->message);
-    CHECK(MatSetType(h->a, MATSEQAIJ), "MatSetType", h->message);
+    /* the rows of this process: whole nodes, as evenly as they divide */
+    MPI_Comm_size(PETSC_COMM_WORLD, &size);
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    nn = n / 2;
+    base = nn / size;
+    rem = nn % size;
+    lnodes = base + (rank < rem ? 1 : 0);
+    snode = rank * base + (rank < rem ? rank : rem);
+    h->rstart = (PetscInt)(2 * snode);
+    h->nloc = (PetscInt)(2 * lnodes);
+    lptr = malloc(((size_t)h->nloc + 1) * sizeof(PetscInt));
+    if (!lptr) {
+        st = VC_PETSC_NOMEM;
+        goto done;
+    }
+    for (j = 0; j <= h->nloc; j++) lptr[j] = h->row_ptr[h->rstart + j] - h->row_ptr[h->rstart];
+
+    CHECK(MatCreate(PETSC_COMM_WORLD, &h->a), "MatCreate", h->message);
+    CHECK(MatSetSizes(h->a, h->nloc, h->nloc, h->n, h->n), "MatSetSizes", h->message);
+    CHECK(MatSetType(h->a, MATAIJ), "MatSetType", h->message);
     CHECK(MatSetBlockSize(h->a, 2), "MatSetBlockSize", h->message);
-    CHECK(MatSeqAIJSetPreallocationCSR(h->a, h->row_ptr, h->col_idx, h->val), "MatSeqAIJSetPreallocationCSR",
-          h->message);
+    /* one of the two applies, by the matrix's type (one or several processes) */
+    CHECK(MatSeqAIJSetPreallocationCSR(h->a, lptr, h->col_idx + h->row_ptr[h->rstart],
+                                       h->val + h->row_ptr[h->rstart]),
+          "MatSeqAIJSetPreallocationCSR", h->message);
+    CHECK(MatMPIAIJSetPreallocationCSR(h->a, lptr, h->col_idx + h->row_ptr[h->rstart],
+                                       h->val + h->row_ptr[h->rstart]),
+          "MatMPIAIJSetPreallocationCSR", h->message);
     CHECK(MatSetOption(h->a, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption", h->message);
     CHECK(MatSetOption(h->a, MAT_SPD, PETSC_TRUE), "MatSetOption", h->message);
     CHECK(MatSetOption(h->a, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption", h->message);
     CHECK(MatCreateVecs(h->a, &h->x, &h->b), "MatCreateVecs", h->message);
+    CHECK(VecScatterCreateToAll(h->x, &h->gather, &h->xall), "VecScatterCreateToAll", h->message);
 
     if (has_coords && h->kind == VC_PETSC_GAMG) {
         PetscScalar *p;
-        CHECK(VecCreateSeq(PETSC_COMM_SELF, h->n, &xy), "VecCreateSeq", h->message);
+        CHECK(VecCreateMPI(PETSC_COMM_WORLD, h->nloc, h->n, &xy), "VecCreateMPI", h->message);
         CHECK(VecSetBlockSize(xy, 2), "VecSetBlockSize", h->message);
         CHECK(VecGetArray(xy, &p), "VecGetArray", h->message);
-        for (j = 0; j < n; j++) p[j] = coords[j];
+        for (j = 0; j < h->nloc; j++) p[j] = coords[h->rstart + j];
         CHECK(VecRestoreArray(xy, &p), "VecRestoreArray", h->message);
         CHECK(MatNullSpaceCreateRigidBody(xy, &ns), "MatNullSpaceCreateRigidBody", h->message);
         CHECK(MatSetNearNullSpace(h->a, ns), "MatSetNearNullSpace", h->message);
     }
 
-    CHECK(KSPCreate(PETSC_COMM_SELF, &h->ksp), "KSPCreate", h->message);
+    CHECK(KSPCreate(PETSC_COMM_WORLD, &h->ksp), "KSPCreate", h->message);
     CHECK(KSPGetPC(h->ksp, &pc), "KSPGetPC", h->message);
     switch (h->kind) {
     case VC_PETSC_GAMG:
@@ -351,6 +395,7 @@ done:
     if (xy) VecDestroy(&xy);
     free(rowlen);
     free(fill);
+    free(lptr);
     PetscPopErrorHandler();
     if (st != VC_PETSC_OK) free_objects(h);
     feclearexcept(FE_ALL_EXCEPT);
@@ -378,7 +423,7 @@ int vc_petsc_factorize(void *handle, int64_t n, const double *val, double rtol, 
         h->val[h->pos_upper[k]] = val[k];
         if (h->pos_lower[k] >= 0) h->val[h->pos_lower[k]] = val[k];
     }
-    for (i = 0; i < h->n; i++) {
+    for (i = h->rstart; i < h->rstart + h->nloc; i++) {
         PetscInt len = h->row_ptr[i + 1] - h->row_ptr[i];
         CHECK(MatSetValues(h->a, 1, &i, len, h->col_idx + h->row_ptr[i], h->val + h->row_ptr[i], INSERT_VALUES),
               "MatSetValues", h->message);
@@ -403,7 +448,7 @@ int vc_petsc_solve(void *handle, int64_t n, int64_t nrhs, const double *b, doubl
 {
     fenv_t env;
     vc_petsc_t *h = handle;
-    int st = VC_PETSC_OK, placed = 0;
+    int st = VC_PETSC_OK;
     int64_t r;
     KSPConvergedReason reason;
 
@@ -415,18 +460,17 @@ int vc_petsc_solve(void *handle, int64_t n, int64_t nrhs, const double *b, doubl
     h->iterations = 0;
     PetscPushErrorHandler(quiet_handler, h->message);
     for (r = 0; r < nrhs; r++) {
-        PetscInt its = 0;
-        CHECK(VecPlaceArray(h->b, b + r * n), "VecPlaceArray", h->message);
-        CHECK(VecPlaceArray(h->x, x + r * n), "VecPlaceArray", h->message);
-        placed = 1;
+        PetscInt its = 0, i;
+        PetscScalar *p;
+        const PetscScalar *q;
+        CHECK(VecGetArray(h->b, &p), "VecGetArray", h->message);
+        for (i = 0; i < h->nloc; i++) p[i] = b[r * n + h->rstart + i];
+        CHECK(VecRestoreArray(h->b, &p), "VecRestoreArray", h->message);
         CHECK(KSPSolve(h->ksp, h->b, h->x), "KSPSolve", h->message);
         CHECK(KSPGetConvergedReason(h->ksp, &reason), "KSPGetConvergedReason", h->message);
         CHECK(KSPGetIterationNumber(h->ksp, &its), "KSPGetIterationNumber", h->message);
         CHECK(KSPGetResidualNorm(h->ksp, &h->rnorm), "KSPGetResidualNorm", h->message);
         if (its > h->iterations) h->iterations = its;
-        CHECK(VecResetArray(h->b), "VecResetArray", h->message);
-        CHECK(VecResetArray(h->x), "VecResetArray", h->message);
-        placed = 0;
         if (reason < 0) {
             *info = (int64_t)reason;
             snprintf(h->message, sizeof h->message, "%s after %d iterations (residual norm %.3e)",
@@ -434,12 +478,16 @@ int vc_petsc_solve(void *handle, int64_t n, int64_t nrhs, const double *b, doubl
             st = VC_PETSC_DIVERGED;
             goto done;
         }
+        /* the solution on every process */
+        CHECK(VecScatterBegin(h->gather, h->x, h->xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin",
+              h->message);
+        CHECK(VecScatterEnd(h->gather, h->x, h->xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd",
+              h->message);
+        CHECK(VecGetArrayRead(h->xall, &q), "VecGetArrayRead", h->message);
+        for (i = 0; i < h->n; i++) x[r * n + i] = q[i];
+        CHECK(VecRestoreArrayRead(h->xall, &q), "VecRestoreArrayRead", h->message);
     }
 done:
-    if (placed) {
-        VecResetArray(h->b);
-        VecResetArray(h->x);
-    }
     PetscPopErrorHandler();
     feclearexcept(FE_ALL_EXCEPT);
     fesetenv(&env);
@@ -462,6 +510,7 @@ int vc_petsc_initialize(const char *options)
 }
 void vc_petsc_finalize(void) {}
 int vc_petsc_comm_size(void) { return 1; }
+int vc_petsc_comm_rank(void) { return 0; }
 int vc_petsc_create(void **handle, int kind)
 {
     (void)kind;

@@ -1,6 +1,6 @@
 """Run decks with CHOLMOD and with the PETSc solvers and compare the displacements.
 
-    usage: compare_solvers.py EXE OUTDIR DECK [DECK ...]
+    usage: compare_solvers.py [--launcher "mpiexec -n 2"] EXE OUTDIR DECK [DECK ...]
 
 Every deck runs with --solver cholmod (the reference: a backward-stable direct
 solve) and with gamg, hypre and mumps; the displacements U of every step (the
@@ -17,6 +17,10 @@ HDF5 results) must agree within a tolerance derived from the stopping rules:
   below the deck's tolerance (1e-10 by default, *CONTACT CONTROLS); the
   difference of two such answers is bounded by cond(A) times the tolerance too,
   so the same bound holds with rtol replaced by max(rtol, 1e-10).
+
+With --launcher the PETSc solvers run under that MPI launcher (the matrix and the
+solve distributed over its processes) and must give the serial CHOLMOD answer within
+the same tolerances, from one set of result files (no JOB.rankN files left).
 
 Exit status 0 when every comparison holds, 1 otherwise; each comparison is printed.
 """
@@ -36,13 +40,17 @@ RTOL = 1.0e-10            # CG's stopping rule (src/solver/petsc.f90 default_rto
 EPS = np.finfo(float).eps
 
 
-def run(exe, deck, out, solver, extra=()):
-    cmd = [exe, "-q", "--solver", solver, "-o", out, *extra, deck]
+def run(exe, deck, out, solver, extra=(), launcher=()):
+    cmd = [*launcher, exe, "-q", "--solver", solver, "-o", out, *extra, deck]
     res = subprocess.run(cmd, capture_output=True, text=True)
     if res.returncode != 0:
         print(f"FAIL {os.path.basename(deck)} {solver}: exit {res.returncode}\n{res.stderr}")
         return None
     job = os.path.splitext(os.path.basename(deck))[0]
+    left = [f for f in os.listdir(out) if ".rank" in f]
+    if left:
+        print(f"FAIL {os.path.basename(deck)} {solver}: files of other processes left: {left}")
+        return None
     with h5py.File(os.path.join(out, job + ".h5"), "r") as f:
         return {k: f["steps"][k]["U"][()] for k in f["steps"]}, os.path.join(out, job + ".mtx")
 
@@ -59,6 +67,10 @@ def condition(mtx):
 
 
 def main(argv):
+    launcher = []
+    if len(argv) > 2 and argv[1] == "--launcher":
+        launcher = argv[2].split()
+        argv = argv[:1] + argv[3:]
     exe, outdir, decks = argv[1], argv[2], argv[3:]
     ok = True
     for deck in decks:
@@ -70,7 +82,7 @@ def main(argv):
         uref, mtx = ref
         kappa = condition(mtx)
         for solver in ("gamg", "hypre", "mumps"):
-            got = run(exe, deck, os.path.join(outdir, name, solver), solver)
+            got = run(exe, deck, os.path.join(outdir, name, solver), solver, launcher=launcher)
             if got is None:
                 ok = False
                 continue

@@ -97,6 +97,24 @@ else()
   set_tests_properties(petsc_solvers PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
 endif()
 set_tests_properties(petsc_solvers PROPERTIES LABELS deck)
+# the same under the MPI launcher with 2 processes (matrix and solves distributed),
+# against the serial CHOLMOD answer; skipped, saying why, without PETSc or mpiexec.
+# Open MPI refuses root unless told (containers, CI run as root).
+if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
+  add_test(NAME petsc_solvers_np2
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py"
+            --launcher "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers-np2"
+            "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp" "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp"
+            "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
+  set_tests_properties(petsc_solvers_np2 PROPERTIES
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2)
+else()
+  add_test(NAME petsc_solvers_np2 COMMAND ${CMAKE_COMMAND} -E echo
+    "skipped: needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
+  set_tests_properties(petsc_solvers_np2 PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+endif()
+set_tests_properties(petsc_solvers_np2 PROPERTIES LABELS deck)
 # without PETSc, --solver gamg stops with a clear message, exit status 1
 if(NOT VC_HAVE_PETSC)
   vc_deck_test(solver_gamg_without_petsc "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" 1
