@@ -4,7 +4,7 @@ module vemcontact_solver_factory
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_solver_linear_solver, only: linear_solver_t
    use vemcontact_solver_cholmod, only: cholmod_solver_t
-   use vemcontact_solver_petsc, only: petsc_solver_t, petsc_gamg, petsc_hypre, petsc_mumps
+   use vemcontact_solver_petsc, only: petsc_solver_t, petsc_gamg, petsc_hypre, petsc_mumps, petsc_ranks
    implicit none
    private
 
@@ -53,7 +53,8 @@ contains
          type is (petsc_solver_t)
             solver%method = merge(petsc_gamg, merge(petsc_hypre, petsc_mumps, kind == solver_hypre), &
                                   kind == solver_gamg)
-            solver%takes_ordering = .false.
+            ! the ordering distributes the rows over several MPI processes
+            solver%takes_ordering = petsc_ranks() > 1
          end select
       case default
          call fatal_error(error, 'error: unknown linear solver (known: '//solver_names()//')', err_input)

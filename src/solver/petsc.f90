@@ -102,8 +102,8 @@ module vemcontact_solver_petsc
          integer(c_int), value :: len
       end subroutine vc_petsc_message
 
-      integer(c_int) function vc_petsc_analyze(handle, n, col_ptr, row_idx, coords, has_coords, info) &
-         bind(c, name='vc_petsc_analyze')
+      integer(c_int) function vc_petsc_analyze(handle, n, col_ptr, row_idx, coords, has_coords, perm, has_perm, &
+                                               info) bind(c, name='vc_petsc_analyze')
          import :: c_int, c_ptr, c_int64_t, c_int32_t, c_double
          type(c_ptr), value :: handle
          integer(c_int64_t), value :: n
@@ -111,6 +111,8 @@ module vemcontact_solver_petsc
          integer(c_int32_t), intent(in) :: row_idx(*)
          real(c_double), intent(in) :: coords(*)
          integer(c_int), value :: has_coords
+         integer(c_int32_t), intent(in) :: perm(*)
+         integer(c_int), value :: has_perm
          integer(c_int64_t), intent(out) :: info
       end function vc_petsc_analyze
 
@@ -179,8 +181,11 @@ contains
    end function mpi_launched
 
    !> The matrix of the pattern of `a` and the solver; for GAMG, the near null
-   !> space of the rigid-body motions of the nodes `coords(2, nnode)`.  `perm` is
-   !> not used (PETSc's solvers order for themselves).
+   !> space of the rigid-body motions of the nodes `coords(2, nnode)`.  `perm`, a
+   !> nodal fill-reducing ordering (nested dissection), numbers the dofs for PETSc:
+   !> with several MPI processes each gets a contiguous share of it, a compact part
+   !> of the mesh (vemcontact_solver_factory asks for it only then; PETSc's solvers
+   !> order for themselves).
    subroutine analyze(self, a, error, perm, coords)
       class(petsc_solver_t), intent(inout) :: self
       type(sym_csc_t), intent(in) :: a
@@ -190,9 +195,10 @@ contains
       integer(c_int) :: st
       integer(c_int64_t) :: info
       real(c_double) :: none(1)
+      integer(c_int32_t) :: no_perm(1)
+      integer(c_int) :: has_perm
       character(len=24) :: buf
 
-      if (present(perm)) continue   ! PETSc's solvers order for themselves
       self%failed_column = 0
       self%nnz_factor = 0
       self%flops = 0.0_wp
@@ -211,19 +217,38 @@ contains
          return
       end if
       none = 0.0_c_double
+      no_perm = 0
+      has_perm = 0
+      if (present(perm)) then
+         if (size(perm) /= a%n) then
+            call fatal_error(error, 'PETSc analyze: permutation has the wrong length', err_internal)
+            return
+         end if
+         has_perm = 1
+      end if
       if (present(coords)) then
          if (size(coords, kind=i8) /= int(a%n, i8)) then
             call fatal_error(error, 'PETSc analyze: coordinates do not match the matrix order', err_internal)
             return
          end if
-         st = vc_petsc_analyze(self%handle, int(a%n, c_int64_t), a%col_ptr, a%row_idx, coords, 1_c_int, info)
+      end if
+      if (present(coords) .and. present(perm)) then
+         st = vc_petsc_analyze(self%handle, int(a%n, c_int64_t), a%col_ptr, a%row_idx, coords, 1_c_int, perm, &
+                               has_perm, info)
+      else if (present(coords)) then
+         st = vc_petsc_analyze(self%handle, int(a%n, c_int64_t), a%col_ptr, a%row_idx, coords, 1_c_int, no_perm, &
+                               has_perm, info)
+      else if (present(perm)) then
+         st = vc_petsc_analyze(self%handle, int(a%n, c_int64_t), a%col_ptr, a%row_idx, none, 0_c_int, perm, &
+                               has_perm, info)
       else
-         st = vc_petsc_analyze(self%handle, int(a%n, c_int64_t), a%col_ptr, a%row_idx, none, 0_c_int, info)
+         st = vc_petsc_analyze(self%handle, int(a%n, c_int64_t), a%col_ptr, a%row_idx, none, 0_c_int, no_perm, &
+                               has_perm, info)
       end if
       if (st == st_bad_input) then
          write (buf, '(i0)') info
-         call fatal_error(error, 'PETSc analyze: invalid upper-triangle pattern at column '//trim(buf), &
-                          err_internal)
+         call fatal_error(error, 'PETSc analyze: invalid upper-triangle pattern or permutation at column/'// &
+                          'position '//trim(buf), err_internal)
       else if (st /= st_ok) then
          call fatal_error(error, 'error: PETSc analysis failed: '//status_text(st, self%handle), err_solver)
       end if

@@ -58,8 +58,12 @@ typedef struct {
     Vec b, x;
     Vec xall;             /* x gathered on every process */
     VecScatter gather;
-    PetscInt *row_ptr;    /* full CSR pattern, 0-based */
+    PetscInt *row_ptr;    /* full CSR pattern, 0-based, in the caller's numbering */
     PetscInt *col_idx;
+    PetscInt *perm;       /* PETSc's index k -> the caller's dof perm[k] */
+    PetscInt *iperm;      /* the caller's dof -> PETSc's index */
+    PetscInt *lptr;       /* this process's rows (PETSc's numbering): CSR offsets into pcol */
+    PetscInt *pcol;       /* ... and their columns in PETSc's numbering */
     int64_t ncsc;         /* entries of the upper-triangle CSC */
     int64_t *pos_upper;   /* CSC entry k -> its position in the CSR arrays (row i, column j) */
     int64_t *pos_lower;   /* CSC entry k -> position of (j, i); -1 on the diagonal */
@@ -199,6 +203,14 @@ static void free_objects(vc_petsc_t *h)
     if (h->xall) VecDestroy(&h->xall);
     free(h->row_ptr);
     free(h->col_idx);
+    free(h->perm);
+    free(h->iperm);
+    free(h->lptr);
+    free(h->pcol);
+    h->perm = NULL;
+    h->iperm = NULL;
+    h->lptr = NULL;
+    h->pcol = NULL;
     free(h->pos_upper);
     free(h->pos_lower);
     free(h->val);
@@ -237,9 +249,12 @@ void vc_petsc_message(void *handle, char *buf, int len)
 
 /* Build the full CSR pattern of the symmetric matrix whose upper triangle is the
  * 1-based CSC (col_ptr, row_idx) of order n, the matrix, the solver and, with
- * coords (2 per node, ndof = 2 nnode), the rigid-body near null space. */
+ * coords (2 per node, ndof = 2 nnode), the rigid-body near null space.  With
+ * has_perm, PETSc numbers the dofs in the order perm (1-based, node by node: a
+ * nested-dissection ordering keeps each process's contiguous share of it compact,
+ * which bounds the communication); without it, in the caller's order. */
 int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int32_t *row_idx, const double *coords,
-                     int has_coords, int64_t *info)
+                     int has_coords, const int32_t *perm, int has_perm, int64_t *info)
 {
     fenv_t env;
     vc_petsc_t *h = handle;
@@ -249,7 +264,7 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
     Vec xy = NULL;
     MatNullSpace ns = NULL;
     PC pc;
-    PetscInt *lptr = NULL;
+    PetscInt *d_nnz = NULL, *o_nnz = NULL, r;
     PetscMPIInt size = 1, rank = 0;
     int64_t nn, base, rem, lnodes, snode;
 
@@ -333,24 +348,55 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
     snode = rank * base + (rank < rem ? rank : rem);
     h->rstart = (PetscInt)(2 * snode);
     h->nloc = (PetscInt)(2 * lnodes);
-    lptr = malloc(((size_t)h->nloc + 1) * sizeof(PetscInt));
-    if (!lptr) {
+    h->perm = malloc((size_t)n * sizeof(PetscInt));
+    h->iperm = malloc((size_t)n * sizeof(PetscInt));
+    h->lptr = malloc(((size_t)h->nloc + 1) * sizeof(PetscInt));
+    d_nnz = calloc((size_t)h->nloc + 1, sizeof(PetscInt));
+    o_nnz = calloc((size_t)h->nloc + 1, sizeof(PetscInt));
+    if (!h->perm || !h->iperm || !h->lptr || !d_nnz || !o_nnz) {
         st = VC_PETSC_NOMEM;
         goto done;
     }
-    for (j = 0; j <= h->nloc; j++) lptr[j] = h->row_ptr[h->rstart + j] - h->row_ptr[h->rstart];
+    for (k = 0; k < n; k++) h->perm[k] = has_perm ? (PetscInt)(perm[k] - 1) : (PetscInt)k;
+    for (k = 0; k < n; k++) h->iperm[k] = -1;
+    for (k = 0; k < n; k++) {
+        if (h->perm[k] < 0 || h->perm[k] >= n || h->iperm[h->perm[k]] >= 0) {
+            *info = k + 1;
+            st = VC_PETSC_BAD_INPUT;
+            goto done;
+        }
+        h->iperm[h->perm[k]] = (PetscInt)k;
+    }
+    /* this process's rows: their columns in PETSc's numbering, in and off its block */
+    h->lptr[0] = 0;
+    for (r = 0; r < h->nloc; r++) {
+        PetscInt i = h->perm[h->rstart + r];
+        h->lptr[r + 1] = h->lptr[r] + (h->row_ptr[i + 1] - h->row_ptr[i]);
+    }
+    h->pcol = malloc((size_t)(h->lptr[h->nloc] > 0 ? h->lptr[h->nloc] : 1) * sizeof(PetscInt));
+    if (!h->pcol) {
+        st = VC_PETSC_NOMEM;
+        goto done;
+    }
+    for (r = 0; r < h->nloc; r++) {
+        PetscInt i = h->perm[h->rstart + r], q;
+        for (q = h->row_ptr[i]; q < h->row_ptr[i + 1]; q++) {
+            PetscInt c = h->iperm[h->col_idx[q]];
+            h->pcol[h->lptr[r] + (q - h->row_ptr[i])] = c;
+            if (c >= h->rstart && c < h->rstart + h->nloc)
+                d_nnz[r]++;
+            else
+                o_nnz[r]++;
+        }
+    }
 
     CHECK(MatCreate(PETSC_COMM_WORLD, &h->a), "MatCreate", h->message);
     CHECK(MatSetSizes(h->a, h->nloc, h->nloc, h->n, h->n), "MatSetSizes", h->message);
     CHECK(MatSetType(h->a, MATAIJ), "MatSetType", h->message);
     CHECK(MatSetBlockSize(h->a, 2), "MatSetBlockSize", h->message);
     /* one of the two applies, by the matrix's type (one or several processes) */
-    CHECK(MatSeqAIJSetPreallocationCSR(h->a, lptr, h->col_idx + h->row_ptr[h->rstart],
-                                       h->val + h->row_ptr[h->rstart]),
-          "MatSeqAIJSetPreallocationCSR", h->message);
-    CHECK(MatMPIAIJSetPreallocationCSR(h->a, lptr, h->col_idx + h->row_ptr[h->rstart],
-                                       h->val + h->row_ptr[h->rstart]),
-          "MatMPIAIJSetPreallocationCSR", h->message);
+    CHECK(MatSeqAIJSetPreallocation(h->a, 0, d_nnz), "MatSeqAIJSetPreallocation", h->message);
+    CHECK(MatMPIAIJSetPreallocation(h->a, 0, d_nnz, 0, o_nnz), "MatMPIAIJSetPreallocation", h->message);
     CHECK(MatSetOption(h->a, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption", h->message);
     CHECK(MatSetOption(h->a, MAT_SPD, PETSC_TRUE), "MatSetOption", h->message);
     CHECK(MatSetOption(h->a, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption", h->message);
@@ -362,7 +408,7 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
         CHECK(VecCreateMPI(PETSC_COMM_WORLD, h->nloc, h->n, &xy), "VecCreateMPI", h->message);
         CHECK(VecSetBlockSize(xy, 2), "VecSetBlockSize", h->message);
         CHECK(VecGetArray(xy, &p), "VecGetArray", h->message);
-        for (j = 0; j < h->nloc; j++) p[j] = coords[h->rstart + j];
+        for (j = 0; j < h->nloc; j++) p[j] = coords[h->perm[h->rstart + j]];
         CHECK(VecRestoreArray(xy, &p), "VecRestoreArray", h->message);
         CHECK(MatNullSpaceCreateRigidBody(xy, &ns), "MatNullSpaceCreateRigidBody", h->message);
         CHECK(MatSetNearNullSpace(h->a, ns), "MatSetNearNullSpace", h->message);
@@ -395,7 +441,8 @@ done:
     if (xy) VecDestroy(&xy);
     free(rowlen);
     free(fill);
-    free(lptr);
+    free(d_nnz);
+    free(o_nnz);
     PetscPopErrorHandler();
     if (st != VC_PETSC_OK) free_objects(h);
     feclearexcept(FE_ALL_EXCEPT);
@@ -411,7 +458,7 @@ int vc_petsc_factorize(void *handle, int64_t n, const double *val, double rtol, 
     vc_petsc_t *h = handle;
     int st = VC_PETSC_OK;
     int64_t k;
-    PetscInt i;
+    PetscInt r;
 
     if (!h || !h->a) return VC_PETSC_ORDER;
     if (n != h->n) return VC_PETSC_BAD_INPUT;
@@ -423,9 +470,10 @@ int vc_petsc_factorize(void *handle, int64_t n, const double *val, double rtol, 
         h->val[h->pos_upper[k]] = val[k];
         if (h->pos_lower[k] >= 0) h->val[h->pos_lower[k]] = val[k];
     }
-    for (i = h->rstart; i < h->rstart + h->nloc; i++) {
+    for (r = 0; r < h->nloc; r++) {
+        PetscInt grow = h->rstart + r, i = h->perm[grow];
         PetscInt len = h->row_ptr[i + 1] - h->row_ptr[i];
-        CHECK(MatSetValues(h->a, 1, &i, len, h->col_idx + h->row_ptr[i], h->val + h->row_ptr[i], INSERT_VALUES),
+        CHECK(MatSetValues(h->a, 1, &grow, len, h->pcol + h->lptr[r], h->val + h->row_ptr[i], INSERT_VALUES),
               "MatSetValues", h->message);
     }
     CHECK(MatAssemblyBegin(h->a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin", h->message);
@@ -464,7 +512,7 @@ int vc_petsc_solve(void *handle, int64_t n, int64_t nrhs, const double *b, doubl
         PetscScalar *p;
         const PetscScalar *q;
         CHECK(VecGetArray(h->b, &p), "VecGetArray", h->message);
-        for (i = 0; i < h->nloc; i++) p[i] = b[r * n + h->rstart + i];
+        for (i = 0; i < h->nloc; i++) p[i] = b[r * n + h->perm[h->rstart + i]];
         CHECK(VecRestoreArray(h->b, &p), "VecRestoreArray", h->message);
         CHECK(KSPSolve(h->ksp, h->b, h->x), "KSPSolve", h->message);
         CHECK(KSPGetConvergedReason(h->ksp, &reason), "KSPGetConvergedReason", h->message);
@@ -484,7 +532,7 @@ int vc_petsc_solve(void *handle, int64_t n, int64_t nrhs, const double *b, doubl
         CHECK(VecScatterEnd(h->gather, h->x, h->xall, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd",
               h->message);
         CHECK(VecGetArrayRead(h->xall, &q), "VecGetArrayRead", h->message);
-        for (i = 0; i < h->n; i++) x[r * n + i] = q[i];
+        for (i = 0; i < h->n; i++) x[r * n + h->perm[i]] = q[i];
         CHECK(VecRestoreArrayRead(h->xall, &q), "VecRestoreArrayRead", h->message);
     }
 done:
@@ -527,9 +575,9 @@ void vc_petsc_message(void *handle, char *buf, int len)
     }
 }
 int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int32_t *row_idx, const double *coords,
-                     int has_coords, int64_t *info)
+                     int has_coords, const int32_t *perm, int has_perm, int64_t *info)
 {
-    (void)handle, (void)n, (void)col_ptr, (void)row_idx, (void)coords, (void)has_coords;
+    (void)handle, (void)n, (void)col_ptr, (void)row_idx, (void)coords, (void)has_coords, (void)perm, (void)has_perm;
     *info = 0;
     return VC_PETSC_NOT_BUILT;
 }

@@ -97,13 +97,14 @@ else()
   set_tests_properties(petsc_solvers PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
 endif()
 set_tests_properties(petsc_solvers PROPERTIES LABELS deck)
-# the same under the MPI launcher with 2 processes (matrix and solves distributed),
-# against the serial CHOLMOD answer; skipped, saying why, without PETSc or mpiexec.
+# the same under the MPI launcher with 2 processes (matrix and solves distributed,
+# rows in nested-dissection order as from 5000 nodes up), against the serial CHOLMOD answer; skipped, saying why, without PETSc or mpiexec.
 # Open MPI refuses root unless told (containers, CI run as root).
 if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
   add_test(NAME petsc_solvers_np2
     COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py"
-            --launcher "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" $<TARGET_FILE:vemcontact>
+            --launcher "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" --options "--ordering metis"
+            $<TARGET_FILE:vemcontact>
             "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers-np2"
             "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp" "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp"
             "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
