@@ -17,7 +17,7 @@ program vemcontact_main
    use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
-   use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg
+   use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_kind
    use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
@@ -29,6 +29,7 @@ program vemcontact_main
    type(job_lock_t) :: lock
    real(wp) :: t0, tstart
    integer :: nremoved, iw, rank
+   logical :: solver_chosen
    character(len=:), allocatable :: job
    character(len=16) :: buf
 
@@ -50,6 +51,8 @@ program vemcontact_main
    ! as JOB.rankN and remove them at the end.
    rank = 0
    job = cli%job
+   ! the command line's --solver wins over the deck's *STATIC, SOLVER=
+   solver_chosen = cli%solver /= solver_auto
    if (uses_petsc(cli%solver) .or. mpi_launched()) then
       call petsc_initialize(cli%petsc_options, error)
       if (allocated(error)) call fail(error)
@@ -91,6 +94,18 @@ program vemcontact_main
       call log%say(model%warnings(iw)%s)
    end do
    call log%phase('read', wall_time() - t0)
+   if (.not. solver_chosen .and. allocated(model%linear_solver)) then
+      cli%solver = solver_kind(model%linear_solver)
+      if (petsc_ranks() > 1 .and. .not. uses_petsc(cli%solver)) then
+         call fatal_error(error, 'error: SOLVER=CHOLMOD (*STATIC) runs on one process; under an MPI launcher '// &
+                          'with several processes use GAMG, HYPRE or MUMPS', err_input)
+         call fail(error)
+      end if
+      if (uses_petsc(cli%solver)) then
+         call petsc_initialize(cli%petsc_options, error)
+         if (allocated(error)) call fail(error)
+      end if
+   end if
 
    opts%out_dir = cli%out_dir
    opts%job = job

@@ -123,3 +123,23 @@ if(NOT VC_HAVE_PETSC)
 endif()
 add_test(NAME cli_unknown_solver COMMAND vemcontact --solver frobnicate x.inp)
 set_tests_properties(cli_unknown_solver PROPERTIES PASS_REGULAR_EXPRESSION "--solver takes auto, cholmod, gamg, hypre, mumps")
+
+# *STATIC, SOLVER=: vemcontact's solvers chosen by the deck (the command line's --solver
+# wins), CalculiX's names accepted for the default, anything else refused at its line
+vc_deck_test(err_solver_unknown ${VC_DECKS}/err_solver_unknown.inp 1
+  "err_solver_unknown.inp:[0-9]+: error: unknown SOLVER=FOO on \\*STATIC")
+vc_deck_test(solver_calculix_name ${VC_DECKS}/solver_calculix_name.inp 0 "" FILES solver_calculix_name.h5)
+if(VC_HAVE_PETSC)
+  vc_deck_test(solver_mumps ${VC_DECKS}/solver_mumps.inp 0 "" FILES solver_mumps.h5)
+else()
+  vc_deck_test(solver_mumps ${VC_DECKS}/solver_mumps.inp 1 "built without PETSc")
+endif()
+# the deck's SOLVER=CHOLMOD applies under the MPI launcher too, where it cannot run
+if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
+  add_test(NAME deck_solver_cholmod_np2
+    COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:vemcontact> -q
+            -o "${CMAKE_CURRENT_BINARY_DIR}/deck-out/solver_cholmod_np2" ${VC_DECKS}/solver_cholmod.inp)
+  set_tests_properties(deck_solver_cholmod_np2 PROPERTIES
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 LABELS deck
+    PASS_REGULAR_EXPRESSION "SOLVER=CHOLMOD \\(\\*STATIC\\) runs on one process")
+endif()
