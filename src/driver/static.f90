@@ -148,9 +148,11 @@ contains
          write (buf, '(2x,a,i0,a)') 'note: ', count(sys%unused), ' nodes belong to no element and are left out'
          call log%say(trim(buf))
       end if
-      write (buf, '(2x,a,i0,a,es9.2,a,a)') 'solver '//sys%solver%describe()//', factor nnz ', sys%solver%nnz_factor, &
+      ! the factor's size for a direct solver that reports it (none for CG + AMG)
+      buf = ''
+      if (sys%solver%nnz_factor > 0) write (buf, '(a,i0,a,es9.2)') ', factor nnz ', sys%solver%nnz_factor, &
          ', flops ', sys%solver%flops
-      call log%say(trim(buf))
+      call log%say('  solver '//sys%solver%describe()//trim(buf))
       call log%phase('pattern', sys%t_pattern)
       ! of which the contact search for the candidate pairs of the pattern
       if (contact%n > 0) call log%phase('candidates', sys%t_candidates)
