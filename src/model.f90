@@ -237,6 +237,9 @@ module vemcontact_model
       !> boundary conditions and loads given before the first *STEP: they hold in every step
       type(step_t) :: initial
       type(step_t), allocatable :: steps(:)
+      !> the linear solver named by *STATIC, SOLVER= (cholmod, gamg, hypre or mumps; one
+      !> per run); unallocated when no step names one of them
+      character(len=:), allocatable :: linear_solver
       ! contact
       type(surface_t), allocatable :: surfaces(:)
       type(interaction_t), allocatable :: interactions(:)

@@ -2,6 +2,7 @@
 module vemcontact_app_cli
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_driver_linear, only: ordering_auto, ordering_metis, ordering_cholmod
+   use vemcontact_solver_factory, only: solver_auto, solver_kind, solver_names
    use vemcontact_path, only: dirname
    implicit none
    private
@@ -21,6 +22,8 @@ module vemcontact_app_cli
       logical :: write_matrix = .false.
       logical :: compress_vtu = .true.           !< zlib-compressed .vtu arrays (--raw-vtu: not)
       integer :: ordering = ordering_auto
+      integer :: solver = solver_auto            !< vemcontact_solver_factory's solver_*
+      character(len=:), allocatable :: petsc_options  !< PETSc's own options, for the PETSc solvers
    end type cli_t
 
 contains
@@ -37,6 +40,11 @@ contains
           '  -o, --output DIR      write results into DIR (created if missing)'//nl// &
           '  --ordering METHOD     fill-reducing ordering: auto (default), metis (METIS on'//nl// &
           '                        the node graph), cholmod (CHOLMOD''s default strategy)'//nl// &
+          '  --solver NAME         linear solver: auto (default: cholmod), cholmod (sparse'//nl// &
+          '                        Cholesky), and with PETSc: gamg (CG + GAMG), hypre'//nl// &
+          '                        (CG + BoomerAMG), mumps (MUMPS Cholesky)'//nl// &
+          '  --petsc-options OPTS  PETSc''s own options for gamg, hypre, mumps, as one'//nl// &
+          '                        string: "-ksp_rtol 1e-12 -pc_gamg_threshold 0.02"'//nl// &
           '  --write-matrix        also write the first step''s matrix as JOB.mtx (Matrix Market)'//nl// &
           '  --raw-vtu             write the .vtu arrays uncompressed (default: zlib, as VTK''s'//nl// &
           '                        vtkZLibDataCompressor)'//nl// &
@@ -71,7 +79,7 @@ contains
             cli%write_matrix = .true.
          case ('--raw-vtu')
             cli%compress_vtu = .false.
-         case ('-o', '--output', '--ordering')
+         case ('-o', '--output', '--ordering', '--solver', '--petsc-options')
             if (i == n) then
                call fatal_error(error, 'error: option '//arg//' needs a value (see vemcontact --help)', err_input)
                return
@@ -87,6 +95,15 @@ contains
                   call fatal_error(error, 'error: --ordering takes auto, metis or cholmod, not "'//arg//'"', err_input)
                   return
                end select
+            else if (arg == '--petsc-options') then
+               call get_arg(i, cli%petsc_options)
+            else if (arg == '--solver') then
+               call get_arg(i, arg)
+               cli%solver = solver_kind(arg)
+               if (cli%solver < 0) then
+                  call fatal_error(error, 'error: --solver takes '//solver_names()//', not "'//arg//'"', err_input)
+                  return
+               end if
             else
                call get_arg(i, cli%out_dir)
             end if
@@ -104,6 +121,7 @@ contains
             cli%deck = arg
          end select
       end do
+      if (.not. allocated(cli%petsc_options)) cli%petsc_options = ''
       if (cli%help .or. cli%version) return
       if (.not. allocated(cli%deck)) then
          call fatal_error(error, 'error: no input deck given'//new_line('a')//usage_text(), err_input)

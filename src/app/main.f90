@@ -7,7 +7,7 @@
 !> 4 solver failure, 5 internal error.
 program vemcontact_main
    use vemcontact_kinds, only: wp
-   use vemcontact_error, only: error_t
+   use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_model, only: model_t
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
    use vemcontact_log, only: logger_t
@@ -17,6 +17,8 @@ program vemcontact_main
    use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
+   use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_kind
+   use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -26,7 +28,10 @@ program vemcontact_main
    type(run_options_t) :: opts
    type(job_lock_t) :: lock
    real(wp) :: t0, tstart
-   integer :: nremoved, iw
+   integer :: nremoved, iw, rank
+   logical :: solver_chosen
+   character(len=:), allocatable :: job
+   character(len=16) :: buf
 
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
@@ -40,16 +45,45 @@ program vemcontact_main
    end if
 
    tstart = wall_time()
+   ! PETSc and MPI only for a PETSc solver or under an MPI launcher: the default run
+   ! never starts MPI.  With several processes every one runs the analysis (the
+   ! solves are distributed); rank 0 writes the results, the others write theirs
+   ! as JOB.rankN and remove them at the end.
+   rank = 0
+   job = cli%job
+   ! the command line's --solver wins over the deck's *STATIC, SOLVER=
+   solver_chosen = cli%solver /= solver_auto
+   if (uses_petsc(cli%solver) .or. mpi_launched()) then
+      call petsc_initialize(cli%petsc_options, error)
+      if (allocated(error)) call fail(error)
+      if (petsc_ranks() > 1) then
+         if (cli%solver == solver_auto) cli%solver = solver_gamg
+         if (.not. uses_petsc(cli%solver)) then
+            call fatal_error(error, 'error: --solver cholmod runs on one process; under an MPI launcher '// &
+                             'with several processes use --solver gamg, hypre or mumps', err_input)
+            call fail(error)
+         end if
+         rank = petsc_rank()
+         if (rank > 0) then
+            write (buf, '(i0)') rank
+            job = cli%job//'.rank'//trim(buf)
+         end if
+      end if
+   end if
    call make_directory(cli%out_dir, error)
    if (allocated(error)) call fail(error)
-   ! held until the process ends
-   call lock_job(cli%out_dir//'/'//cli%job//'.lock', lock, error)
+   if (rank == 0) then
+      ! held until the process ends
+      call lock_job(cli%out_dir//'/'//job//'.lock', lock, error)
+      if (allocated(error)) call fail(error)
+   end if
+   call remove_job_files(cli%out_dir, job, nremoved, error)
    if (allocated(error)) call fail(error)
-   call remove_job_files(cli%out_dir, cli%job, nremoved, error)
-   if (allocated(error)) call fail(error)
-   log%quiet = cli%quiet
-   call log%open(cli%out_dir//'/'//cli%job//'.log', error)
-   if (allocated(error)) call fail(error)
+   log%quiet = cli%quiet .or. rank > 0
+   if (rank == 0) then
+      call log%open(cli%out_dir//'/'//job//'.log', error)
+      if (allocated(error)) call fail(error)
+   end if
    call log%say(version_text()//': job '//cli%job//', deck '//cli%deck)
 
    t0 = wall_time()
@@ -60,10 +94,23 @@ program vemcontact_main
       call log%say(model%warnings(iw)%s)
    end do
    call log%phase('read', wall_time() - t0)
+   if (.not. solver_chosen .and. allocated(model%linear_solver)) then
+      cli%solver = solver_kind(model%linear_solver)
+      if (petsc_ranks() > 1 .and. .not. uses_petsc(cli%solver)) then
+         call fatal_error(error, 'error: SOLVER=CHOLMOD (*STATIC) runs on one process; under an MPI launcher '// &
+                          'with several processes use GAMG, HYPRE or MUMPS', err_input)
+         call fail(error)
+      end if
+      if (uses_petsc(cli%solver)) then
+         call petsc_initialize(cli%petsc_options, error)
+         if (allocated(error)) call fail(error)
+      end if
+   end if
 
    opts%out_dir = cli%out_dir
-   opts%job = cli%job
+   opts%job = job
    opts%ordering = cli%ordering
+   opts%solver = cli%solver
    opts%write_matrix = cli%write_matrix
    opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)
@@ -71,6 +118,11 @@ program vemcontact_main
    call log%phase('total', wall_time() - tstart)
    call log%close(error)
    if (allocated(error)) call fail(error)
+   if (rank > 0) then
+      call remove_job_files(cli%out_dir, job, nremoved, error)
+      if (allocated(error)) call fail(error)
+   end if
+   call petsc_finalize()
    call exit_process(0)
 
 contains
@@ -84,6 +136,7 @@ contains
          call log%say(err%message)
          call log%close()
       end if
+      call petsc_finalize()
       call exit_process(err%code)
    end subroutine fail
 end program vemcontact_main

@@ -8,7 +8,7 @@ module vemcontact_deck_loads
    use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure, &
                                dload_hydrostatic, procedure_static, procedure_geostatic, element_order
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, here, &
-                                    err_here, err_at, field, get_int, get_real, push_item, push_dof, &
+                                    err_here, err_at, warn_here, field, get_int, get_real, push_item, push_dof, &
                                     push_dload, node_index, elem_index, get_set, set_suggestion, &
                                     ref_kind, ref_id, ref_name, loc_str, tidy_items
    use vemcontact_deck_lines, only: advance
@@ -443,13 +443,16 @@ contains
 
    !> *STATIC [, SOLVER=...] or, with `geostatic`, *GEOSTATIC (Abaqus): the procedure of the
    !> step, exactly one per step.  The optional data line (time increments) is checked and ignored.
-   subroutine read_procedure(p, geostatic)
+   !> SOLVER= names the run's linear solver (read_solver).
+   subroutine read_procedure(p, geostatic, model, kw)
       type(deck_parser_t), intent(inout) :: p
       logical, intent(in) :: geostatic
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
       integer :: k, nline
       real(wp) :: v
-      logical :: ok
-      character(len=:), allocatable :: kname, other
+      logical :: ok, found
+      character(len=:), allocatable :: kname, other, val
       character(len=*), parameter :: one = 'a step has exactly one procedure: *STATIC, or *GEOSTATIC in the first step'
       if (geostatic) then
          kname = '*GEOSTATIC'
@@ -475,6 +478,8 @@ contains
          p%cur%procedure = procedure_static
       end if
       p%procedure_seen = .true.
+      call get_param(kw, 'SOLVER', val, found)
+      if (found) call read_solver(p, model, val)
       nline = 0
       do
          call advance(p)
@@ -493,6 +498,41 @@ contains
          end do
       end do
    end subroutine read_procedure
+
+   !> SOLVER= of *STATIC: vemcontact's linear solvers CHOLMOD, GAMG, HYPRE, MUMPS set
+   !> model%linear_solver (the command line's --solver wins); CalculiX's SPOOLES,
+   !> PARDISO, PASTIX, ITERATIVE SCALING and ITERATIVE CHOLESKY are accepted for the
+   !> default.  One solver per run: a step naming another than an earlier step is warned of.
+   subroutine read_solver(p, model, val)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      character(len=*), intent(in) :: val
+      character(len=:), allocatable :: name
+      select case (val)
+      case ('CHOLMOD')
+         name = 'cholmod'
+      case ('GAMG')
+         name = 'gamg'
+      case ('HYPRE')
+         name = 'hypre'
+      case ('MUMPS')
+         name = 'mumps'
+      case ('SPOOLES', 'PARDISO', 'PASTIX', 'ITERATIVESCALING', 'ITERATIVECHOLESKY')
+         return
+      case default
+         call err_here(p, 'unknown SOLVER='//val//' on *STATIC', &
+                       'vemcontact''s linear solvers are CHOLMOD, GAMG, HYPRE and MUMPS (docs/deck-reference.md); '// &
+                       'CalculiX''s SPOOLES, PARDISO, PASTIX, ITERATIVE SCALING and ITERATIVE CHOLESKY are '// &
+                       'accepted for the default')
+         return
+      end select
+      if (.not. allocated(model%linear_solver)) then
+         model%linear_solver = name
+      else if (model%linear_solver /= name) then
+         call warn_here(p, 'SOLVER='//val//' is not used: one linear solver per run, the first step''s ('// &
+                        to_upper(model%linear_solver)//')')
+      end if
+   end subroutine read_solver
 
    !> *END STEP, or the implicit end of a step: store the step in the model.
    subroutine end_step(p, model)

@@ -1,7 +1,7 @@
 !> The linear system of a model and its solution for a given load state.
 !>
-!> `setup` builds the pattern, assembles the stiffness and runs CHOLMOD's symbolic
-!> analysis once; `solve_state` imposes a state's prescribed displacements, pays a
+!> `setup` builds the pattern, assembles the stiffness and runs the linear solver's
+!> analysis once (vemcontact_solver_linear_solver: CHOLMOD by default); `solve_state` imposes a state's prescribed displacements, pays a
 !> numeric factorization only when the set of fixed dofs differs from the one last
 !> factorized (the matrix does not depend on the prescribed values), and solves.
 !> With contact, the contact iteration (vemcontact_contact_iteration) adds its
@@ -13,7 +13,8 @@ module vemcontact_driver_linear
    use vemcontact_model, only: model_t
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: build_pattern
-   use vemcontact_solver_cholmod, only: cholmod_solver_t
+   use vemcontact_solver_linear_solver, only: linear_solver_t
+   use vemcontact_solver_factory, only: make_solver, solver_auto
    use vemcontact_solver_ordering, only: node_graph_from_elements, nodal_metis_ordering
    use vemcontact_driver_validate, only: validate_elements
    use vemcontact_driver_ranges, only: validate_ranges
@@ -46,7 +47,8 @@ module vemcontact_driver_linear
    type, extends(contact_system_t) :: linear_system_t
       type(sym_csc_t) :: k                        !< assembled stiffness, no constraints
       type(sym_csc_t) :: kb                       !< with the constraints of the last factorization
-      type(cholmod_solver_t) :: solver
+      !> the backend chosen by `setup`; only its interface is used
+      class(linear_solver_t), allocatable :: solver
       integer(ip), allocatable :: part(:)         !< part (connected body) of each node
       integer(ip) :: nparts = 0
       logical, allocatable :: unused(:)           !< nodes of no element
@@ -71,14 +73,17 @@ module vemcontact_driver_linear
 contains
 
    !> Validate, find the parts, build the pattern (covering the contact candidates
-   !> of `contact` at the undeformed state), assemble and analyze.
-   subroutine setup(self, model, ordering, error, contact)
+   !> of `contact` at the undeformed state), assemble and analyze with the linear
+   !> solver `solver` (vemcontact_solver_factory's solver_*; default solver_auto).
+   subroutine setup(self, model, ordering, error, contact, solver)
       class(linear_system_t), intent(inout) :: self
       type(model_t), intent(in) :: model
       integer, intent(in) :: ordering
       type(error_t), allocatable, intent(out) :: error
       type(contact_state_t), intent(in), optional :: contact
+      integer, intent(in), optional :: solver
       real(wp), allocatable :: u0(:)
+      integer :: kind
       ! the memory bound first: it is linear in the elements, the checks of their shapes are not
       call check_memory(model, error)
       if (allocated(error)) return
@@ -89,6 +94,14 @@ contains
       self%unused = unused_nodes(model)
       call find_parts(model, self%part, self%nparts)
       self%ordering = ordering
+      kind = solver_auto
+      if (present(solver)) kind = solver
+      if (allocated(self%solver)) then
+         call self%solver%release()
+         deallocate (self%solver)
+      end if
+      call make_solver(kind, self%solver, error)
+      if (allocated(error)) return
       allocate (u0(2*model%nnode), source=0.0_wp)
       call self%build_system(model, error, contact, u0)
    end subroutine setup
@@ -132,14 +145,14 @@ contains
 
       t0 = wall_time()
       call self%solver%release()
-      if (self%ordering == ordering_metis .or. &
-          (self%ordering == ordering_auto .and. model%nnode >= metis_threshold)) then
+      if (self%solver%takes_ordering .and. (self%ordering == ordering_metis .or. &
+          (self%ordering == ordering_auto .and. model%nnode >= metis_threshold))) then
          allocate (perm(2*model%nnode))
          call nodal_metis_ordering(model%nnode, adj_ptr, adj, perm, error)
          if (allocated(error)) return
-         call self%solver%analyze(self%k, error, perm)
+         call self%solver%analyze(self%k, error, perm, model%x)
       else
-         call self%solver%analyze(self%k, error)
+         call self%solver%analyze(self%k, error, coords=model%x)
       end if
       if (allocated(error)) return
       self%t_analyze = wall_time() - t0

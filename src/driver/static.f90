@@ -37,6 +37,7 @@ module vemcontact_driver_static
       character(len=:), allocatable :: out_dir
       character(len=:), allocatable :: job
       integer :: ordering = 0                 !< vemcontact_driver_linear's ordering_*
+      integer :: solver = 0                   !< vemcontact_solver_factory's solver_* (0: auto)
       logical :: write_matrix = .false.
       logical :: compress_vtu = .true.        !< zlib-compressed .vtu arrays
    end type run_options_t
@@ -136,7 +137,7 @@ contains
             call log%say(trim(buf))
          end if
       end if
-      call sys%setup(model, opts%ordering, error, contact)
+      call sys%setup(model, opts%ordering, error, contact, opts%solver)
       if (allocated(error)) return
       ! valid but known to be poor: locking FEM sections, non-convex FEM quads
       warnings = element_warnings(model)
@@ -147,8 +148,11 @@ contains
          write (buf, '(2x,a,i0,a)') 'note: ', count(sys%unused), ' nodes belong to no element and are left out'
          call log%say(trim(buf))
       end if
-      write (buf, '(2x,a,i0,a,es9.2,a,a)') 'factor nnz ', sys%solver%nnz_factor, ', flops ', sys%solver%flops
-      call log%say(trim(buf))
+      ! the factor's size for a direct solver that reports it (none for CG + AMG)
+      buf = ''
+      if (sys%solver%nnz_factor > 0) write (buf, '(a,i0,a,es9.2)') ', factor nnz ', sys%solver%nnz_factor, &
+         ', flops ', sys%solver%flops
+      call log%say('  solver '//sys%solver%describe()//trim(buf))
       call log%phase('pattern', sys%t_pattern)
       ! of which the contact search for the candidate pairs of the pattern
       if (contact%n > 0) call log%phase('candidates', sys%t_candidates)

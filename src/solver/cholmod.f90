@@ -1,4 +1,5 @@
-!> Sparse Cholesky factorization of the global stiffness matrix with CHOLMOD.
+!> Sparse Cholesky factorization of the global stiffness matrix with CHOLMOD:
+!> the `linear_solver_t` backend `cholmod`.
 !> The C shim `cholmod_shim.c` owns CHOLMOD's workspace, the copied matrix and
 !> the factor behind an opaque handle; this module binds to it and wraps it in
 !> `cholmod_solver_t`.  The usual sequence is one `analyze` (ordering and
@@ -16,6 +17,7 @@ module vemcontact_solver_cholmod
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_solver, err_internal
    use vemcontact_sparse_matrix, only: sym_csc_t
+   use vemcontact_solver_linear_solver, only: linear_solver_t
    implicit none
    private
 
@@ -30,28 +32,20 @@ module vemcontact_solver_cholmod
       'amd', 'metis', 'nesdis', 'colamd', 'postordered']
 
    !> Cholesky solver for a symmetric positive definite `sym_csc_t`.
-   type :: cholmod_solver_t
-      !> After a failed `factorize` on a matrix that is not positive definite:
-      !> the 1-based dof (original numbering) whose pivot was not positive, 0 otherwise.
-      integer(ip) :: failed_column = 0
-      !> nnz(L) of the last analysis, without the explicit zeros of supernodes.
-      integer(i8) :: nnz_factor = 0
-      !> Flop count of the LL' factorization estimated by the last analysis.
-      real(wp) :: flops = 0.0_wp
-      !> Ordering used by the last analysis: 'given', 'amd', 'metis', 'nesdis', ...
-      character(len=:), allocatable :: ordering
+   !> `nnz_factor` is nnz(L) without the explicit zeros of supernodes, `ordering`
+   !> 'given', 'amd', 'metis', 'nesdis', ...
+   type, extends(linear_solver_t) :: cholmod_solver_t
       !> Whether the factor is supernodal (always requested).
       logical :: supernodal = .false.
       type(c_ptr), private :: handle = c_null_ptr
    contains
       procedure :: analyze
       procedure :: factorize
-      procedure, private :: solve_one
-      procedure, private :: solve_many
-      !> `solve(b, x, error)` for one right-hand side `b(:)` or several `b(:, :)`.
-      generic :: solve => solve_one, solve_many
+      procedure :: solve_one
+      procedure :: solve_many
       procedure :: rcond
       procedure :: release
+      procedure :: describe
       final :: finalize
    end type cholmod_solver_t
 
@@ -118,18 +112,20 @@ contains
    !> Ordering and symbolic factorization of the pattern of `a` (values unused).
    !> `perm(k)` is the original dof eliminated k-th (1-based); without it CHOLMOD's
    !> default strategy chooses (AMD, and METIS when AMD's fill is high).
-   !> Any earlier analysis and factor are discarded.
-   subroutine analyze(self, a, error, perm)
+   !> Any earlier analysis and factor are discarded.  `coords` is not used.
+   subroutine analyze(self, a, error, perm, coords)
       class(cholmod_solver_t), intent(inout) :: self
       type(sym_csc_t), intent(in) :: a
       type(error_t), allocatable, intent(out) :: error
       integer(ip), intent(in), optional :: perm(:)
+      real(wp), intent(in), optional :: coords(:, :)
       integer(c_int) :: st, ordering, is_super
       integer(c_int64_t) :: info, lnz
       real(c_double) :: fl
       integer(c_int32_t) :: no_perm(1)
       character(len=24) :: buf
 
+      if (present(coords)) continue   ! a factorization has no use for the coordinates
       self%failed_column = 0
       self%nnz_factor = 0
       self%flops = 0.0_wp
@@ -218,7 +214,7 @@ contains
 
    !> Solve A x = b with the current factor.
    subroutine solve_one(self, b, x, error)
-      class(cholmod_solver_t), intent(in) :: self
+      class(cholmod_solver_t), intent(inout) :: self
       real(wp), intent(in) :: b(:)
       real(wp), intent(out) :: x(:)
       type(error_t), allocatable, intent(out) :: error
@@ -234,7 +230,7 @@ contains
 
    !> Solve A x(:, k) = b(:, k) for every column k with the current factor.
    subroutine solve_many(self, b, x, error)
-      class(cholmod_solver_t), intent(in) :: self
+      class(cholmod_solver_t), intent(inout) :: self
       real(wp), intent(in) :: b(:, :)
       real(wp), intent(out) :: x(:, :)
       type(error_t), allocatable, intent(out) :: error
@@ -275,6 +271,14 @@ contains
       self%supernodal = .false.
       if (allocated(self%ordering)) deallocate (self%ordering)
    end subroutine release
+
+   !> 'cholmod (ordering metis)': the backend and the ordering of the last analysis.
+   function describe(self) result(s)
+      class(cholmod_solver_t), intent(in) :: self
+      character(len=:), allocatable :: s
+      s = 'cholmod'
+      if (allocated(self%ordering)) s = s//' (ordering '//self%ordering//')'
+   end function describe
 
    ! Elemental, so that arrays of solvers are finalized too.
    impure elemental subroutine finalize(self)

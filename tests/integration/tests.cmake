@@ -80,3 +80,66 @@ vc_deck_test(err_range_modulus ${VC_DECKS}/err_range_modulus.inp 1
   "err_range_modulus.inp:26: error: Young's modulus of material UNIT = 1.00E-307")
 vc_deck_test(err_range_product ${VC_DECKS}/err_range_product.inp 1
   "err_range_product.inp:29: error: the displacement the loads make .* is about 1e270[)], beyond 1e-250 .. 1e250")
+
+# The PETSc solvers (gamg, hypre, mumps) against CHOLMOD on a VEM cantilever, a
+# polygon mesh, a Voronoi contact deck and an FEM contact deck, within tolerances
+# derived from their stopping rules (compare_solvers.py); skipped, saying why,
+# when CMake found no PETSc
+if(VC_HAVE_PETSC)
+  add_test(NAME petsc_solvers
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py" $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers"
+            "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp"
+            "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp" "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
+else()
+  add_test(NAME petsc_solvers COMMAND ${CMAKE_COMMAND} -E echo
+    "skipped: vemcontact was built without PETSc (pkg-config PETSc not found; scripts/install-deps.sh installs petsc-dev)")
+  set_tests_properties(petsc_solvers PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+endif()
+set_tests_properties(petsc_solvers PROPERTIES LABELS deck)
+# the same under the MPI launcher with 2 processes (matrix and solves distributed,
+# rows in nested-dissection order as from 5000 nodes up), against the serial CHOLMOD answer; skipped, saying why, without PETSc or mpiexec.
+# Open MPI refuses root unless told (containers, CI run as root).
+if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
+  add_test(NAME petsc_solvers_np2
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py"
+            --launcher "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" --options "--ordering metis"
+            $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers-np2"
+            "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp" "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp"
+            "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
+  set_tests_properties(petsc_solvers_np2 PROPERTIES
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2)
+else()
+  add_test(NAME petsc_solvers_np2 COMMAND ${CMAKE_COMMAND} -E echo
+    "skipped: needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
+  set_tests_properties(petsc_solvers_np2 PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+endif()
+set_tests_properties(petsc_solvers_np2 PROPERTIES LABELS deck)
+# without PETSc, --solver gamg stops with a clear message, exit status 1
+if(NOT VC_HAVE_PETSC)
+  vc_deck_test(solver_gamg_without_petsc "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" 1
+    "built without PETSc")
+endif()
+add_test(NAME cli_unknown_solver COMMAND vemcontact --solver frobnicate x.inp)
+set_tests_properties(cli_unknown_solver PROPERTIES PASS_REGULAR_EXPRESSION "--solver takes auto, cholmod, gamg, hypre, mumps")
+
+# *STATIC, SOLVER=: vemcontact's solvers chosen by the deck (the command line's --solver
+# wins), CalculiX's names accepted for the default, anything else refused at its line
+vc_deck_test(err_solver_unknown ${VC_DECKS}/err_solver_unknown.inp 1
+  "err_solver_unknown.inp:[0-9]+: error: unknown SOLVER=FOO on \\*STATIC")
+vc_deck_test(solver_calculix_name ${VC_DECKS}/solver_calculix_name.inp 0 "" FILES solver_calculix_name.h5)
+if(VC_HAVE_PETSC)
+  vc_deck_test(solver_mumps ${VC_DECKS}/solver_mumps.inp 0 "" FILES solver_mumps.h5)
+else()
+  vc_deck_test(solver_mumps ${VC_DECKS}/solver_mumps.inp 1 "built without PETSc")
+endif()
+# the deck's SOLVER=CHOLMOD applies under the MPI launcher too, where it cannot run
+if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
+  add_test(NAME deck_solver_cholmod_np2
+    COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:vemcontact> -q
+            -o "${CMAKE_CURRENT_BINARY_DIR}/deck-out/solver_cholmod_np2" ${VC_DECKS}/solver_cholmod.inp)
+  set_tests_properties(deck_solver_cholmod_np2 PROPERTIES
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 LABELS deck
+    PASS_REGULAR_EXPRESSION "SOLVER=CHOLMOD \\(\\*STATIC\\) runs on one process")
+endif()

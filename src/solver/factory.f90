@@ -1,0 +1,69 @@
+!> The linear solver backends by name: the names the command line takes and the
+!> `linear_solver_t` of a name.
+module vemcontact_solver_factory
+   use vemcontact_error, only: error_t, fatal_error, err_input
+   use vemcontact_solver_linear_solver, only: linear_solver_t
+   use vemcontact_solver_cholmod, only: cholmod_solver_t
+   use vemcontact_solver_petsc, only: petsc_solver_t, petsc_gamg, petsc_hypre, petsc_mumps, petsc_ranks
+   implicit none
+   private
+
+   public :: solver_kind, solver_names, make_solver, uses_petsc
+
+   !> The backends: `auto` lets the driver choose (CHOLMOD for every size today);
+   !> gamg, hypre and mumps are PETSc's (vemcontact_solver_petsc).
+   integer, parameter, public :: solver_auto = 0, solver_cholmod = 1, solver_gamg = 2, solver_hypre = 3, &
+      solver_mumps = 4
+   !> Names of the backends, indexed by solver_*.
+   character(len=*), parameter :: names(0:4) = [character(len=7) :: 'auto', 'cholmod', 'gamg', 'hypre', 'mumps']
+
+contains
+
+   !> The solver_* of `name` (lower case, as on the command line); -1 if unknown.
+   pure integer function solver_kind(name) result(k)
+      character(len=*), intent(in) :: name
+      integer :: i
+      k = -1
+      do i = lbound(names, 1), ubound(names, 1)
+         if (trim(names(i)) == name) k = i
+      end do
+   end function solver_kind
+
+   !> 'auto, cholmod, gamg, hypre, mumps': the names solver_kind knows, for messages and help.
+   pure function solver_names() result(s)
+      character(len=:), allocatable :: s
+      integer :: i
+      s = trim(names(lbound(names, 1)))
+      do i = lbound(names, 1) + 1, ubound(names, 1)
+         s = s//', '//trim(names(i))
+      end do
+   end function solver_names
+
+   !> A new solver of kind `kind` (solver_*); `auto` is CHOLMOD.
+   subroutine make_solver(kind, solver, error)
+      integer, intent(in) :: kind
+      class(linear_solver_t), allocatable, intent(out) :: solver
+      type(error_t), allocatable, intent(out) :: error
+      select case (kind)
+      case (solver_auto, solver_cholmod)
+         allocate (cholmod_solver_t :: solver)
+      case (solver_gamg, solver_hypre, solver_mumps)
+         allocate (petsc_solver_t :: solver)
+         select type (solver)
+         type is (petsc_solver_t)
+            solver%method = merge(petsc_gamg, merge(petsc_hypre, petsc_mumps, kind == solver_hypre), &
+                                  kind == solver_gamg)
+            ! the ordering distributes the rows over several MPI processes
+            solver%takes_ordering = petsc_ranks() > 1
+         end select
+      case default
+         call fatal_error(error, 'error: unknown linear solver (known: '//solver_names()//')', err_input)
+      end select
+   end subroutine make_solver
+
+   !> Whether the backend `kind` runs on PETSc (and MPI).
+   pure logical function uses_petsc(kind)
+      integer, intent(in) :: kind
+      uses_petsc = kind == solver_gamg .or. kind == solver_hypre .or. kind == solver_mumps
+   end function uses_petsc
+end module vemcontact_solver_factory

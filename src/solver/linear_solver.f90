@@ -1,0 +1,107 @@
+!> The interface of a linear solver for the symmetric positive definite global
+!> stiffness (`sym_csc_t`, upper triangle): what the driver and, through it, the
+!> contact iteration call, whatever the backend (vemcontact_solver_cholmod, the
+!> first; vemcontact_solver_factory makes one by name).
+!>
+!> The sequence is one `analyze` of a pattern (ordering and symbolic
+!> factorization for a direct solver, the pattern for an iterative one) followed
+!> by any number of `factorize`/`solve` pairs with changing values: `factorize` is
+!> the numeric factorization of a direct solver and the preconditioner set-up of
+!> an iterative one; `solve` takes one right-hand side or a block of them.  Every
+!> failure travels in the error object.
+!>
+!> A solver may own C memory, released by `release` (and by the backend's final
+!> procedure): do not copy a solver with intrinsic assignment.
+module vemcontact_solver_linear_solver
+   use vemcontact_kinds, only: wp, ip, i8
+   use vemcontact_error, only: error_t
+   use vemcontact_sparse_matrix, only: sym_csc_t
+   implicit none
+   private
+
+   public :: linear_solver_t
+
+   !> A solver of A x = b for a symmetric positive definite A.
+   type, abstract :: linear_solver_t
+      !> After a failed `factorize` on a matrix that is not positive definite:
+      !> the 1-based dof (original numbering) whose pivot was not positive, 0 otherwise.
+      integer(ip) :: failed_column = 0
+      !> nnz of the factor of the last analysis (0 for an iterative solver).
+      integer(i8) :: nnz_factor = 0
+      !> Flop count of the factorization estimated by the last analysis (0 if unknown).
+      real(wp) :: flops = 0.0_wp
+      !> Ordering used by the last analysis ('amd', 'metis', ...; unallocated if none).
+      character(len=:), allocatable :: ordering
+      !> Whether `analyze` uses the `perm` it is given (a direct solver's fill-reducing
+      !> ordering): callers compute one only then.  vemcontact_solver_factory sets it.
+      logical :: takes_ordering = .true.
+   contains
+      procedure(analyze_i), deferred :: analyze
+      procedure(factorize_i), deferred :: factorize
+      procedure(solve_one_i), deferred :: solve_one
+      procedure(solve_many_i), deferred :: solve_many
+      !> `solve(b, x, error)` for one right-hand side `b(:)` or several `b(:, :)`.
+      generic :: solve => solve_one, solve_many
+      procedure(rcond_i), deferred :: rcond
+      procedure(release_i), deferred :: release
+      procedure(describe_i), deferred :: describe
+   end type linear_solver_t
+
+   abstract interface
+      !> Analysis of the pattern of `a` (values unused).  `perm(k)`, when given, is
+      !> the original dof eliminated k-th (1-based), for a direct solver;
+      !> `coords(2, nnode)`, when given, are the coordinates of the nodes whose dofs
+      !> (2 per node, x then y) `a` couples, for an algebraic multigrid's near null
+      !> space.  Solvers use what they can of the two.  Any earlier analysis is discarded.
+      subroutine analyze_i(self, a, error, perm, coords)
+         import :: linear_solver_t, sym_csc_t, error_t, ip, wp
+         class(linear_solver_t), intent(inout) :: self
+         type(sym_csc_t), intent(in) :: a
+         type(error_t), allocatable, intent(out) :: error
+         integer(ip), intent(in), optional :: perm(:)
+         real(wp), intent(in), optional :: coords(:, :)
+      end subroutine analyze_i
+      !> Numeric factorization (direct) or preconditioner set-up (iterative) of `a`,
+      !> which must have the analysed pattern.
+      subroutine factorize_i(self, a, error)
+         import :: linear_solver_t, sym_csc_t, error_t
+         class(linear_solver_t), intent(inout) :: self
+         type(sym_csc_t), intent(in) :: a
+         type(error_t), allocatable, intent(out) :: error
+      end subroutine factorize_i
+      !> x = A^-1 b with the current factorization.
+      subroutine solve_one_i(self, b, x, error)
+         import :: linear_solver_t, wp, error_t
+         class(linear_solver_t), intent(inout) :: self
+         real(wp), intent(in) :: b(:)
+         real(wp), intent(out) :: x(:)
+         type(error_t), allocatable, intent(out) :: error
+      end subroutine solve_one_i
+      !> x(:, k) = A^-1 b(:, k) for every column k.
+      subroutine solve_many_i(self, b, x, error)
+         import :: linear_solver_t, wp, error_t
+         class(linear_solver_t), intent(inout) :: self
+         real(wp), intent(in) :: b(:, :)
+         real(wp), intent(out) :: x(:, :)
+         type(error_t), allocatable, intent(out) :: error
+      end subroutine solve_many_i
+      !> Reciprocal condition estimate of the current factorization; < 0 when the
+      !> solver has none (no factor, or an iterative solver).
+      real(wp) function rcond_i(self)
+         import :: linear_solver_t, wp
+         class(linear_solver_t), intent(in) :: self
+      end function rcond_i
+      !> Free what the solver holds; it can be analysed again afterwards.
+      subroutine release_i(self)
+         import :: linear_solver_t
+         class(linear_solver_t), intent(inout) :: self
+      end subroutine release_i
+      !> The backend as the command line names it, with what its last analysis
+      !> chose, for the log: 'cholmod (ordering metis)'.
+      function describe_i(self) result(s)
+         import :: linear_solver_t
+         class(linear_solver_t), intent(in) :: self
+         character(len=:), allocatable :: s
+      end function describe_i
+   end interface
+end module vemcontact_solver_linear_solver

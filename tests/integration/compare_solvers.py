@@ -1,0 +1,109 @@
+"""Run decks with CHOLMOD and with the PETSc solvers and compare the displacements.
+
+    usage: compare_solvers.py [--launcher "mpiexec -n 2"] [--options "--ordering metis"]
+                              EXE OUTDIR DECK [DECK ...]
+
+Every deck runs with --solver cholmod (the reference: a backward-stable direct
+solve) and with gamg, hypre and mumps; the displacements U of every step (the
+HDF5 results) must agree within a tolerance derived from the stopping rules:
+
+- CG (gamg, hypre) stops at |b - A x| <= rtol |b| with rtol = 1e-10
+  (src/solver/petsc.f90), so |x - x*| / |x*| <= cond(A) rtol.  cond(A) is computed
+  here from the first step's matrix (--write-matrix, 2-norm condition number of the
+  constrained stiffness by scipy's eigensolver), times 10 for the CHOLMOD answer's
+  own round-off and the spread of conditioning between steps.
+- MUMPS, backward stable like CHOLMOD: cond(A) eps, times 100 (the growth of the
+  round-off with the size of these small matrices).
+- With contact, both runs stop the contact iteration once its relative residual is
+  below the deck's tolerance (1e-10 by default, *CONTACT CONTROLS); the
+  difference of two such answers is bounded by cond(A) times the tolerance too,
+  so the same bound holds with rtol replaced by max(rtol, 1e-10).
+
+With --launcher the PETSc solvers run under that MPI launcher (the matrix and the
+solve distributed over its processes) and must give the serial CHOLMOD answer within
+the same tolerances, from one set of result files (no JOB.rankN files left).
+--options are added to the PETSc solvers' command lines (`--ordering metis`: the
+processes' rows are contiguous shares of a nested-dissection ordering, as they are
+by default from 5000 nodes up).
+
+Exit status 0 when every comparison holds, 1 otherwise; each comparison is printed.
+"""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+import scipy.io
+import scipy.sparse
+import scipy.sparse.linalg
+
+RTOL = 1.0e-10            # CG's stopping rule (src/solver/petsc.f90 default_rtol)
+EPS = np.finfo(float).eps
+
+
+def run(exe, deck, out, solver, extra=(), launcher=()):
+    cmd = [*launcher, exe, "-q", "--solver", solver, "-o", out, *extra, deck]
+    res = subprocess.run(cmd, capture_output=True, text=True)
+    if res.returncode != 0:
+        print(f"FAIL {os.path.basename(deck)} {solver}: exit {res.returncode}\n{res.stderr}")
+        return None
+    job = os.path.splitext(os.path.basename(deck))[0]
+    left = [f for f in os.listdir(out) if ".rank" in f]
+    if left:
+        print(f"FAIL {os.path.basename(deck)} {solver}: files of other processes left: {left}")
+        return None
+    with h5py.File(os.path.join(out, job + ".h5"), "r") as f:
+        return {k: f["steps"][k]["U"][()] for k in f["steps"]}, os.path.join(out, job + ".mtx")
+
+
+def condition(mtx):
+    """2-norm condition number of the symmetric matrix in the Matrix Market file."""
+    a = scipy.io.mmread(mtx).tocsc()
+    if a.shape[0] <= 2000:
+        w = np.linalg.eigvalsh(a.toarray())
+        return w[-1] / w[0]
+    lmax = scipy.sparse.linalg.eigsh(a, k=1, which="LA", return_eigenvectors=False)[0]
+    lmin = scipy.sparse.linalg.eigsh(a, k=1, sigma=0, which="LM", return_eigenvectors=False)[0]
+    return lmax / lmin
+
+
+def main(argv):
+    launcher, options = [], []
+    while len(argv) > 2 and argv[1] in ("--launcher", "--options"):
+        if argv[1] == "--launcher":
+            launcher = argv[2].split()
+        else:
+            options = argv[2].split()
+        argv = argv[:1] + argv[3:]
+    exe, outdir, decks = argv[1], argv[2], argv[3:]
+    ok = True
+    for deck in decks:
+        name = os.path.splitext(os.path.basename(deck))[0]
+        ref = run(exe, deck, os.path.join(outdir, name, "cholmod"), "cholmod", ["--write-matrix"])
+        if ref is None:
+            ok = False
+            continue
+        uref, mtx = ref
+        kappa = condition(mtx)
+        for solver in ("gamg", "hypre", "mumps"):
+            got = run(exe, deck, os.path.join(outdir, name, solver), solver, options, launcher=launcher)
+            if got is None:
+                ok = False
+                continue
+            u, _ = got
+            tol = 100 * kappa * EPS if solver == "mumps" else 10 * kappa * RTOL
+            for step in uref:
+                scale = np.max(np.abs(uref[step]))
+                diff = np.max(np.abs(u[step] - uref[step])) / scale if scale > 0 else 0.0
+                good = diff <= tol
+                ok &= bool(good)
+                print(f"{'ok  ' if good else 'FAIL'} {name} step {step} {solver}: |u - u_cholmod| / |u_cholmod| = "
+                      f"{diff:.2e} <= {tol:.2e} (cond {kappa:.2e})")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
