@@ -17,6 +17,7 @@ program vemcontact_main
    use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
+   use vemcontact_output_phases, only: write_phases
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -25,7 +26,7 @@ program vemcontact_main
    type(model_t) :: model
    type(run_options_t) :: opts
    type(job_lock_t) :: lock
-   real(wp) :: t0, tstart
+   real(wp) :: tstart
    integer :: nremoved, iw
 
    call parse_command_line(cli, error)
@@ -51,15 +52,18 @@ program vemcontact_main
    call log%open(cli%out_dir//'/'//cli%job//'.log', error)
    if (allocated(error)) call fail(error)
    call log%say(version_text()//': job '//cli%job//', deck '//cli%deck)
+   ! the phases are laps from here to the end (vemcontact_log): they add up to the total
+   call log%start_clock(tstart)
+   ! results folder, lock, removal of the previous results, log
+   call log%lap('start')
 
-   t0 = wall_time()
    call read_deck(cli%deck, model, error)
    if (allocated(error)) call fail(error)
    ! valid input that is partly ignored (output variables vemcontact does not compute, ...)
    do iw = 1, size(model%warnings)
       call log%say(model%warnings(iw)%s)
    end do
-   call log%phase('read', wall_time() - t0)
+   call log%lap('read')
 
    opts%out_dir = cli%out_dir
    opts%job = cli%job
@@ -69,6 +73,8 @@ program vemcontact_main
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)
    call log%phase('total', wall_time() - tstart)
+   call write_phases(cli%out_dir//'/'//cli%job//'_phases.csv', log, error)
+   if (allocated(error)) call fail(error)
    call log%close(error)
    if (allocated(error)) call fail(error)
    call exit_process(0)
