@@ -21,6 +21,7 @@ module vemcontact_app_cli
       logical :: write_matrix = .false.
       logical :: compress_vtu = .true.           !< zlib-compressed .vtu arrays (--raw-vtu: not)
       integer :: ordering = ordering_auto
+      integer :: blas_threads = 0                !< --blas-threads N; 0: vemcontact_app_blas_threads chooses
    end type cli_t
 
 contains
@@ -37,6 +38,9 @@ contains
           '  -o, --output DIR      write results into DIR (created if missing)'//nl// &
           '  --ordering METHOD     fill-reducing ordering: auto (default), metis (METIS on'//nl// &
           '                        the node graph), cholmod (CHOLMOD''s default strategy)'//nl// &
+          '  --blas-threads N      BLAS (OpenBLAS) threads of the factorization; default:'//nl// &
+          '                        OPENBLAS_NUM_THREADS or OMP_NUM_THREADS if set, else the'//nl// &
+          '                        cores idle at the start (cores minus the load average)'//nl// &
           '  --write-matrix        also write the first step''s matrix as JOB.mtx (Matrix Market)'//nl// &
           '  --raw-vtu             write the .vtu arrays uncompressed (default: zlib, as VTK''s'//nl// &
           '                        vtkZLibDataCompressor)'//nl// &
@@ -53,7 +57,7 @@ contains
    subroutine parse_command_line(cli, error)
       type(cli_t), intent(out) :: cli
       type(error_t), allocatable, intent(out) :: error
-      integer :: i, n
+      integer :: i, n, stat
       character(len=:), allocatable :: arg
       n = command_argument_count()
       i = 0
@@ -71,13 +75,21 @@ contains
             cli%write_matrix = .true.
          case ('--raw-vtu')
             cli%compress_vtu = .false.
-         case ('-o', '--output', '--ordering')
+         case ('-o', '--output', '--ordering', '--blas-threads')
             if (i == n) then
                call fatal_error(error, 'error: option '//arg//' needs a value (see vemcontact --help)', err_input)
                return
             end if
             i = i + 1
-            if (arg == '--ordering') then
+            if (arg == '--blas-threads') then
+               call get_arg(i, arg)
+               read (arg, *, iostat=stat) cli%blas_threads
+               if (stat /= 0 .or. verify(trim(arg), '0123456789') /= 0 .or. cli%blas_threads < 1) then
+                  call fatal_error(error, 'error: --blas-threads takes a whole number of at least 1, not "'// &
+                                   arg//'"', err_input)
+                  return
+               end if
+            else if (arg == '--ordering') then
                call get_arg(i, arg)
                select case (arg)
                case ('auto'); cli%ordering = ordering_auto

@@ -18,6 +18,7 @@ program vemcontact_main
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
    use vemcontact_output_phases, only: write_phases
+   use vemcontact_app_blas_threads, only: set_blas_threads
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -27,6 +28,7 @@ program vemcontact_main
    type(run_options_t) :: opts
    type(job_lock_t) :: lock
    real(wp) :: tstart
+   character(len=:), allocatable :: note
    integer :: nremoved, iw
 
    call parse_command_line(cli, error)
@@ -52,6 +54,8 @@ program vemcontact_main
    call log%open(cli%out_dir//'/'//cli%job//'.log', error)
    if (allocated(error)) call fail(error)
    call log%say(version_text()//': job '//cli%job//', deck '//cli%deck)
+   call set_blas_threads(cli%blas_threads, note)
+   call log%say('  '//note)
    ! the phases are laps from here to the end (vemcontact_log): they add up to the total
    call log%start_clock(tstart)
    ! results folder, lock, removal of the previous results, log
