@@ -25,57 +25,19 @@ contains
    end function max_element_nodes
 
    !> Assemble the stiffness matrix into `a` (pattern already built, values overwritten).
-   !> The elements are taken in locality_order, so that the matrix columns and the
-   !> coordinates an element touches are mostly still in cache from its neighbours
-   !> (the order changes only the order of the sums, i.e. round-off); if an element
-   !> fails, the failures are reported in element order (element_failures).
    subroutine assemble_stiffness(model, a, error)
       type(model_t), intent(in) :: model
       type(sym_csc_t), intent(inout) :: a
       type(error_t), allocatable, intent(out) :: error
       real(wp), allocatable :: xy(:, :), ke(:, :), work(:)
-      integer, allocatable :: order(:)
-      real(wp) :: d(3, 3)
-      integer :: nmax, n, info, e, k
-      integer(ip) :: first
-      logical :: ok
-      nmax = max_element_nodes(model)
-      allocate (xy(2, nmax), ke(2*nmax, 2*nmax), work(element_workspace_size(nmax)))
-      order = locality_order(model)
-      a%val = 0.0_wp
-      do k = 1, model%nelem
-         e = order(k)
-         first = model%elem_ptr(e)
-         n = model%elem_ptr(e + 1) - first
-         xy(:, :n) = model%x(:, model%elem_conn(first:first + n - 1))
-         associate (mat => model%materials(model%elem_mat(e)))
-            call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
-         end associate
-         call element_stiffness(model%elem_form(e), xy(:, :n), d, model%elem_thick(e), ke(:2*n, :2*n), &
-                                work, info, stab(model, e), element_order(model%elem_type(e)))
-         if (info /= 0) then
-            call element_failures(model, error)
-            return
-         end if
-         call add_element_matrix(a, model%elem_conn(first:first + n - 1), ke(:2*n, :2*n), ok)
-         if (.not. ok) then
-            call append_message(error, 'internal error: element outside the matrix pattern', err_internal)
-            return
-         end if
-      end do
-   end subroutine assemble_stiffness
-
-   !> The messages of the elements whose stiffness fails, in element order (at most 50).
-   subroutine element_failures(model, error)
-      type(model_t), intent(in) :: model
-      type(error_t), allocatable, intent(inout) :: error
-      real(wp), allocatable :: xy(:, :), ke(:, :), work(:)
       real(wp) :: d(3, 3)
       integer :: nmax, n, info, e, nerr
       integer(ip) :: first
+      logical :: ok
       character(len=32) :: buf
       nmax = max_element_nodes(model)
       allocate (xy(2, nmax), ke(2*nmax, 2*nmax), work(element_workspace_size(nmax)))
+      a%val = 0.0_wp
       nerr = 0
       do e = 1, model%nelem
          first = model%elem_ptr(e)
@@ -86,60 +48,21 @@ contains
          end associate
          call element_stiffness(model%elem_form(e), xy(:, :n), d, model%elem_thick(e), ke(:2*n, :2*n), &
                                 work, info, stab(model, e), element_order(model%elem_type(e)))
-         if (info == 0) cycle
-         nerr = nerr + 1
-         write (buf, '(i0)') model%elem_id(e)
-         call append_message(error, location_string(model, model%elem_loc(e))// &
-                             ': error: element '//trim(buf)//': '//info_text(info), err_model)
-         if (nerr >= 50) return
+         if (info /= 0) then
+            nerr = nerr + 1
+            write (buf, '(i0)') model%elem_id(e)
+            call append_message(error, location_string(model, model%elem_loc(e))// &
+                                ': error: element '//trim(buf)//': '//info_text(info), err_model)
+            if (nerr >= 50) return
+            cycle
+         end if
+         call add_element_matrix(a, model%elem_conn(first:first + n - 1), ke(:2*n, :2*n), ok)
+         if (.not. ok) then
+            call append_message(error, 'internal error: element outside the matrix pattern', err_internal)
+            return
+         end if
       end do
-   end subroutine element_failures
-
-   !> The elements in Z order (Morton order) of their first node on a grid of about
-   !> one square per element, by a counting sort on the key: neighbouring elements
-   !> follow each other, whatever the numbering of the nodes and elements (a Voronoi
-   !> mesher numbers them in the random order of its seeds).  O(elements).
-   pure function locality_order(model) result(order)
-      type(model_t), intent(in) :: model
-      integer, allocatable :: order(:)
-      integer, allocatable :: key(:), start(:)
-      real(wp) :: lo(2), span(2)
-      integer :: bits, ncell, e, i, c(2)
-      integer(ip) :: node
-      allocate (order(model%nelem), key(model%nelem))
-      if (model%nelem == 0) return
-      lo = [minval(model%x(1, :)), minval(model%x(2, :))]
-      span = [maxval(model%x(1, :)), maxval(model%x(2, :))] - lo
-      span = merge(span, 1.0_wp, span > 0.0_wp)
-      ! 4**bits squares, about one per element (at most 2**30)
-      bits = 0
-      do while (4**bits < model%nelem .and. bits < 15)
-         bits = bits + 1
-      end do
-      ncell = 2**bits
-      do e = 1, model%nelem
-         node = model%elem_conn(model%elem_ptr(e))
-         c = min(ncell - 1, max(0, int((model%x(:, node) - lo)/span*ncell)))
-         key(e) = 0
-         do i = 0, bits - 1
-            key(e) = ior(key(e), ishft(iand(ishft(c(1), -i), 1), 2*i))
-            key(e) = ior(key(e), ishft(iand(ishft(c(2), -i), 1), 2*i + 1))
-         end do
-      end do
-      ! counting sort: start(k + 1) is the first place of key k
-      allocate (start(4**bits + 1), source=0)
-      do e = 1, model%nelem
-         start(key(e) + 2) = start(key(e) + 2) + 1
-      end do
-      start(1) = 1
-      do i = 2, size(start)
-         start(i) = start(i) + start(i - 1)
-      end do
-      do e = 1, model%nelem
-         order(start(key(e) + 1)) = e
-         start(key(e) + 1) = start(key(e) + 1) + 1
-      end do
-   end function locality_order
+   end subroutine assemble_stiffness
 
    pure function info_text(info) result(s)
       integer, intent(in) :: info

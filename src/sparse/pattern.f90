@@ -11,7 +11,7 @@ module vemcontact_sparse_pattern
    implicit none
    private
 
-   public :: build_pattern, add_element_matrix, block_offset
+   public :: build_pattern, add_element_matrix, add_element_matrix_searched, block_offset
 
 contains
 
@@ -180,8 +180,9 @@ contains
       end do
    end subroutine add_sorted
 
-   !> add_element_matrix by one binary search per node pair, for node lists with
-   !> a repeated node (the diagonal block then receives every pair of its copies).
+   !> add_element_matrix by one binary search per node pair (the scatter before
+   !> issue 15, kept for bench/assembly_rate.f90), for node lists with a repeated
+   !> node (the diagonal block then receives every pair of its copies).
    pure subroutine add_element_matrix_searched(a, nodes, ke, ok)
       type(sym_csc_t), intent(inout) :: a
       integer(ip), intent(in) :: nodes(:)
