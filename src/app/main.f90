@@ -76,6 +76,8 @@ program vemcontact_main
    opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)
+   ! HDF5 file closed, factor, matrices and result arrays released (run_static's return)
+   call log%lap('finish')
    call log%phase('total', wall_time() - tstart)
    call write_phases(cli%out_dir//'/'//cli%job//'_phases.csv', log, error)
    if (allocated(error)) call fail(error)

@@ -333,7 +333,6 @@ contains
       call log%say('results')
       call log%say('  '//base//'.pvd')
       call log%say('  '//base//'.h5')
-      call log%lap('finish')
    contains
       !> "estimated relative energy error 2.3 %; 50 % of it in 4.1 % of the cells, around (x, y)"
       subroutine say_estimate(e)
