@@ -8,9 +8,15 @@
  * Times cholmod_l_analyze (default ordering strategy, supernodal),
  * cholmod_l_factorize and cholmod_l_solve, one line per phase in seconds,
  * then nnz(L), the ordering chosen and the relative residual.
+ *
+ * Environment (for trying CHOLMOD's settings, issue 15):
+ *   CHOLMOD_RELAX="n0,n1,n2,z0,z1,z2"  supernodal amalgamation (Common nrelax[3],
+ *                                     zrelax[3]; CHOLMOD's defaults 4,16,48,0.8,0.1,0.05)
+ *   CHOLMOD_ORDERING=amd|metis|nesdis  one ordering instead of CHOLMOD's default strategy
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "cholmod.h"
@@ -52,6 +58,22 @@ int main(int argc, char **argv)
     }
     cholmod_l_start(c);
     c->supernodal = CHOLMOD_SUPERNODAL; /* as vemcontact does; the default picks it too for 2D FE matrices */
+    {
+        const char *relax = getenv("CHOLMOD_RELAX"), *ord = getenv("CHOLMOD_ORDERING");
+        if (relax && sscanf(relax, "%zu,%zu,%zu,%lf,%lf,%lf", &c->nrelax[0], &c->nrelax[1], &c->nrelax[2],
+                            &c->zrelax[0], &c->zrelax[1], &c->zrelax[2]) != 6) {
+            fprintf(stderr, "cholmod_ref: CHOLMOD_RELAX takes n0,n1,n2,z0,z1,z2\n");
+            return 2;
+        }
+        if (ord) {
+            c->nmethods = 1;
+            c->method[0].ordering = strcmp(ord, "amd") == 0     ? CHOLMOD_AMD
+                                    : strcmp(ord, "metis") == 0 ? CHOLMOD_METIS
+                                                                : CHOLMOD_NESDIS;
+        }
+        printf("relax      %zu,%zu,%zu,%g,%g,%g\n", c->nrelax[0], c->nrelax[1], c->nrelax[2], c->zrelax[0],
+               c->zrelax[1], c->zrelax[2]);
+    }
 
     t0 = now();
     f = fopen(argv[1], "r");

@@ -5,6 +5,12 @@
 !> name is removed, never followed) and every line is written with a checked
 !> write(2): the first failure is kept (`failed`, `close`) and later lines go
 !> to the screen only.  Control characters (from deck text) are shown escaped.
+!>
+!> Every phase line is also recorded (`phases`: name, seconds, step, the phase
+!> it is part of) so that the run can write its phase times as data
+!> (vemcontact_output_phases).  `lap` times what has run since the previous lap
+!> and was not logged as a phase of its own, so a run timed by laps from start
+!> to end has phases that add up to its total.
 module vemcontact_log
    use vemcontact_kinds, only: wp
    use vemcontact_clock, only: wall_time
@@ -15,7 +21,16 @@ module vemcontact_log
    implicit none
    private
 
-   public :: logger_t, wall_time
+   public :: logger_t, phase_record_t, wall_time
+
+   !> One logged phase.
+   type :: phase_record_t
+      character(len=:), allocatable :: name
+      !> the phase this one is part of ('' for a phase of the run's total)
+      character(len=:), allocatable :: within
+      integer :: step = 0          !< the step it belongs to, 0 outside the steps
+      real(wp) :: seconds = 0
+   end type phase_record_t
 
    type :: logger_t
       integer :: fd = -1            !< descriptor of JOB.log
@@ -23,10 +38,17 @@ module vemcontact_log
       logical :: quiet = .false.
       integer :: errno = 0          !< first failed write to JOB.log, 0 if none
       character(len=:), allocatable :: path
+      type(phase_record_t), allocatable :: phases(:)   !< (nphases used)
+      integer :: nphases = 0
+      integer :: step = 0           !< step of the phases logged now (0 outside the steps)
+      real(wp) :: mark = 0          !< wall time of the last lap
+      real(wp) :: since_mark = 0    !< seconds of the phases (not sub-phases) logged since then
    contains
       procedure :: open => logger_open
       procedure :: say => logger_say
       procedure :: phase => logger_phase
+      procedure :: lap => logger_lap
+      procedure :: start_clock => logger_start_clock
       procedure :: failed => logger_failed
       procedure :: close => logger_close
    end type logger_t
@@ -53,15 +75,56 @@ contains
       if (self%opened .and. self%errno == 0) self%errno = write_bytes(self%fd, shown//new_line('a'))
    end subroutine logger_say
 
-   !> One timing line: "  phase ...... 1.234 s".
-   subroutine logger_phase(self, name, seconds)
+   !> One timing line: "  phase ...... 1.234 s", recorded in `phases`.
+   !> `within`: the phase this one is part of (a sub-phase, not added again to the total).
+   subroutine logger_phase(self, name, seconds, within)
       class(logger_t), intent(inout) :: self
       character(len=*), intent(in) :: name
       real(wp), intent(in) :: seconds
+      character(len=*), intent(in), optional :: within
       character(len=80) :: buf
+      type(phase_record_t), allocatable :: grown(:)
       write (buf, '(2x,a,t24,f10.3,a)') name, seconds, ' s'
       call self%say(trim(buf))
+      if (.not. allocated(self%phases)) allocate (self%phases(16))
+      if (self%nphases == size(self%phases)) then
+         allocate (grown(2*size(self%phases)))
+         grown(:self%nphases) = self%phases
+         call move_alloc(grown, self%phases)
+      end if
+      self%nphases = self%nphases + 1
+      associate (r => self%phases(self%nphases))
+         r%name = name
+         r%seconds = seconds
+         r%step = self%step
+         if (present(within)) then
+            r%within = within
+         else
+            r%within = ''
+            self%since_mark = self%since_mark + seconds
+         end if
+      end associate
    end subroutine logger_phase
+
+   !> Log as phase `name` the wall time since the last lap (or start_clock) that
+   !> no phase logged in between accounts for, and start the next lap.
+   subroutine logger_lap(self, name)
+      class(logger_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp) :: now
+      now = wall_time()
+      call self%phase(name, max(0.0_wp, now - self%mark - self%since_mark))
+      self%mark = now
+      self%since_mark = 0
+   end subroutine logger_lap
+
+   !> Start the laps at wall time t (the start of the run).
+   subroutine logger_start_clock(self, t)
+      class(logger_t), intent(inout) :: self
+      real(wp), intent(in) :: t
+      self%mark = t
+      self%since_mark = 0
+   end subroutine logger_start_clock
 
    !> The error of the first failed write to JOB.log, if any.
    subroutine logger_failed(self, error)

@@ -180,7 +180,7 @@ static int digits(const char *s, size_t n) {
 
 /* True when `name` is one of job's result files: JOB.pvd, JOB.h5, JOB.mtx,
  * JOB_NNNN.vtu, JOB_contact_NNNN.vtu, JOB_contact_pairK_NNNN.csv,
- * JOB_print_NNNN.csv. */
+ * JOB_print_NNNN.csv, JOB_phases.csv. */
 static int is_job_result(const char *name, size_t n, const char *job) {
     size_t j = strlen(job);
     const char *r;
@@ -194,6 +194,7 @@ static int is_job_result(const char *name, size_t n, const char *job) {
     if (r[0] != '_') return 0;
     r++;
     m--;
+    if (m == 10 && memcmp(r, "phases.csv", 10) == 0) return 1;
     if (m > 4 && memcmp(r + m - 4, ".vtu", 4) == 0) {
         if (digits(r, m - 4)) return 1;
         if (m > 12 && memcmp(r, "contact_", 8) == 0 && digits(r + 8, m - 12)) return 1;

@@ -74,7 +74,8 @@ def check_folder(out, job, contact=True, allow_temporaries=False):
                 text = fh.read()
             assert text.endswith("\n"), f"{p} ends in the middle of a line"
             rows = list(csv.reader(text.splitlines()))
-            first = "variable" if "_print_" in n else "node"   # JOB_print_NNNN.csv or a contact CSV
+            # JOB_print_NNNN.csv, JOB_phases.csv or a contact CSV
+            first = "variable" if "_print_" in n else "step" if n.endswith("_phases.csv") else "node"
             assert rows[0][0] == first and all(len(r) == len(rows[0]) for r in rows), p
     complete, h5steps = None, None
     h5 = os.path.join(out, job + ".h5")

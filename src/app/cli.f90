@@ -24,6 +24,7 @@ module vemcontact_app_cli
       integer :: ordering = ordering_auto
       integer :: solver = solver_auto            !< vemcontact_solver_factory's solver_*
       character(len=:), allocatable :: petsc_options  !< PETSc's own options, for the PETSc solvers
+      integer :: blas_threads = 0                !< --blas-threads N; 0: vemcontact_app_blas_threads chooses
    end type cli_t
 
 contains
@@ -45,6 +46,9 @@ contains
           '                        (CG + BoomerAMG), mumps (MUMPS Cholesky)'//nl// &
           '  --petsc-options OPTS  PETSc''s own options for gamg, hypre, mumps, as one'//nl// &
           '                        string: "-ksp_rtol 1e-12 -pc_gamg_threshold 0.02"'//nl// &
+          '  --blas-threads N      BLAS (OpenBLAS) threads of the factorization; default:'//nl// &
+          '                        OPENBLAS_NUM_THREADS or OMP_NUM_THREADS if set, else the'//nl// &
+          '                        cores idle at the start (cores minus the load average)'//nl// &
           '  --write-matrix        also write the first step''s matrix as JOB.mtx (Matrix Market)'//nl// &
           '  --raw-vtu             write the .vtu arrays uncompressed (default: zlib, as VTK''s'//nl// &
           '                        vtkZLibDataCompressor)'//nl// &
@@ -61,7 +65,7 @@ contains
    subroutine parse_command_line(cli, error)
       type(cli_t), intent(out) :: cli
       type(error_t), allocatable, intent(out) :: error
-      integer :: i, n
+      integer :: i, n, stat
       character(len=:), allocatable :: arg
       n = command_argument_count()
       i = 0
@@ -79,13 +83,21 @@ contains
             cli%write_matrix = .true.
          case ('--raw-vtu')
             cli%compress_vtu = .false.
-         case ('-o', '--output', '--ordering', '--solver', '--petsc-options')
+         case ('-o', '--output', '--ordering', '--solver', '--petsc-options', '--blas-threads')
             if (i == n) then
                call fatal_error(error, 'error: option '//arg//' needs a value (see vemcontact --help)', err_input)
                return
             end if
             i = i + 1
-            if (arg == '--ordering') then
+            if (arg == '--blas-threads') then
+               call get_arg(i, arg)
+               read (arg, *, iostat=stat) cli%blas_threads
+               if (stat /= 0 .or. verify(trim(arg), '0123456789') /= 0 .or. cli%blas_threads < 1) then
+                  call fatal_error(error, 'error: --blas-threads takes a whole number of at least 1, not "'// &
+                                   arg//'"', err_input)
+                  return
+               end if
+            else if (arg == '--ordering') then
                call get_arg(i, arg)
                select case (arg)
                case ('auto'); cli%ordering = ordering_auto

@@ -19,6 +19,8 @@ program vemcontact_main
    use vemcontact_driver_static, only: run_options_t, run_static
    use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_kind
    use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
+   use vemcontact_output_phases, only: write_phases
+   use vemcontact_app_blas_threads, only: set_blas_threads
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -27,10 +29,10 @@ program vemcontact_main
    type(model_t) :: model
    type(run_options_t) :: opts
    type(job_lock_t) :: lock
-   real(wp) :: t0, tstart
+   real(wp) :: tstart
    integer :: nremoved, iw, rank
    logical :: solver_chosen
-   character(len=:), allocatable :: job
+   character(len=:), allocatable :: job, note
    character(len=16) :: buf
 
    call parse_command_line(cli, error)
@@ -85,15 +87,19 @@ program vemcontact_main
       if (allocated(error)) call fail(error)
    end if
    call log%say(version_text()//': job '//cli%job//', deck '//cli%deck)
+   call set_blas_threads(cli%blas_threads, note)
+   call log%say('  '//note)
+   ! the phases are laps from here to the end (vemcontact_log): they add up to the total
+   call log%start_clock(tstart)
+   ! results folder, lock, removal of the previous results, log
+   call log%lap('start')
 
-   t0 = wall_time()
    call read_deck(cli%deck, model, error)
    if (allocated(error)) call fail(error)
    ! valid input that is partly ignored (output variables vemcontact does not compute, ...)
    do iw = 1, size(model%warnings)
       call log%say(model%warnings(iw)%s)
    end do
-   call log%phase('read', wall_time() - t0)
    if (.not. solver_chosen .and. allocated(model%linear_solver)) then
       cli%solver = solver_kind(model%linear_solver)
       if (petsc_ranks() > 1 .and. .not. uses_petsc(cli%solver)) then
@@ -106,6 +112,8 @@ program vemcontact_main
          if (allocated(error)) call fail(error)
       end if
    end if
+   ! reading ends with the deck's choice of solver (and PETSc's start for it)
+   call log%lap('read')
 
    opts%out_dir = cli%out_dir
    opts%job = job
@@ -115,7 +123,11 @@ program vemcontact_main
    opts%compress_vtu = cli%compress_vtu
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)
+   ! HDF5 file closed, factor, matrices and result arrays released (run_static's return)
+   call log%lap('finish')
    call log%phase('total', wall_time() - tstart)
+   call write_phases(cli%out_dir//'/'//job//'_phases.csv', log, error)
+   if (allocated(error)) call fail(error)
    call log%close(error)
    if (allocated(error)) call fail(error)
    if (rank > 0) then

@@ -53,7 +53,7 @@ module vemcontact_driver_linear
       integer(ip) :: nparts = 0
       logical, allocatable :: unused(:)           !< nodes of no element
       ! phase timings of the last call, seconds (factorize, solve, search: contact_system_t)
-      real(wp) :: t_pattern = 0, t_assemble = 0, t_analyze = 0
+      real(wp) :: t_validate = 0, t_pattern = 0, t_assemble = 0, t_analyze = 0
       !> of t_pattern, the search for the candidate node pairs of the pattern
       real(wp) :: t_candidates = 0
       integer :: ordering = 0
@@ -84,6 +84,8 @@ contains
       integer, intent(in), optional :: solver
       real(wp), allocatable :: u0(:)
       integer :: kind
+      real(wp) :: t0
+      t0 = wall_time()
       ! the memory bound first: it is linear in the elements, the checks of their shapes are not
       call check_memory(model, error)
       if (allocated(error)) return
@@ -91,6 +93,7 @@ contains
       if (allocated(error)) return
       call validate_ranges(model, error)
       if (allocated(error)) return
+      self%t_validate = wall_time() - t0
       self%unused = unused_nodes(model)
       call find_parts(model, self%part, self%nparts)
       self%ordering = ordering

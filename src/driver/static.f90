@@ -27,7 +27,6 @@ module vemcontact_driver_static
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_log, only: logger_t
-   use vemcontact_clock, only: wall_time
    implicit none
    private
 
@@ -93,7 +92,6 @@ contains
       type(field_selection_t) :: sel
       integer :: ie
       type(string_t), allocatable :: vtu_files(:), warnings(:)
-      real(wp) :: t0
       integer :: istep, iw
       character(len=256) :: buf
       character(len=:), allocatable :: base, vtu_name, name
@@ -153,11 +151,16 @@ contains
       if (sys%solver%nnz_factor > 0) write (buf, '(a,i0,a,es9.2)') ', factor nnz ', sys%solver%nnz_factor, &
          ', flops ', sys%solver%flops
       call log%say('  solver '//sys%solver%describe()//trim(buf))
+      ! the phases are laps (vemcontact_log): each lap is the time since the
+      ! previous one that the phases logged in between do not account for
+      call log%phase('validate', sys%t_validate)
       call log%phase('pattern', sys%t_pattern)
       ! of which the contact search for the candidate pairs of the pattern
-      if (contact%n > 0) call log%phase('candidates', sys%t_candidates)
+      if (contact%n > 0) call log%phase('candidates', sys%t_candidates, within='pattern')
       call log%phase('assemble', sys%t_assemble)
       call log%phase('analyze', sys%t_analyze)
+      ! contact surfaces and pairs, parts, unused nodes, element warnings
+      call log%lap('set-up')
 
       base = opts%out_dir//'/'//opts%job
       call h5%open(base//'.h5', error)
@@ -185,8 +188,10 @@ contains
       allocate (u_ref(2*model%nnode), source=0.0_wp)
       allocate (vtu_files(0), times(0), parts(0))
       u = 0.0_wp
+      call log%lap('write mesh')
       do istep = 1, size(model%steps)
          current = istep
+         log%step = istep
          name = step_name(istep)
          call log%say('step '//name)
          call advance_load_state(model%steps(istep), st)
@@ -201,9 +206,12 @@ contains
          call log%phase('solve', sys%t_solve)
          ! pairing and active set of every iteration of the step (also in the iteration lines)
          if (contact%n > 0) call log%phase('search', sys%t_search)
+         ! the rest of solve_state: load vector, constraints, the contact iteration's own work
+         call log%lap('system')
          if (opts%write_matrix .and. istep == 1) then
             call write_matrix_market(base//'.mtx', sys%kb, error)
             if (allocated(error)) return
+            call log%lap('write matrix')
          end if
 
          if (model%steps(istep)%procedure == procedure_geostatic) then
@@ -213,7 +221,6 @@ contains
          end if
          u_out = u - u_ref
 
-         t0 = wall_time()
          ! second-order elements give their own stress and strain at each node
          ! (linear for the k = 2 VEM), averaged at the nodes instead of the
          ! element values; strains E = D^-1 S from the same recovery
@@ -229,13 +236,13 @@ contains
             call element_strains(model, s_elem, extra%e_elem)
             call nodal_average(model, extra%e_elem, extra%e_node)
          end if
+         call log%lap('stresses')
          ! the recovery-based error estimate (first-order elements only: the
          ! recovery compares a linear field with the constant element stress)
          if (.not. allocated(s_at)) then
             call estimate_error(model, s_elem, est)
-            call log%phase('estimate', wall_time() - t0)
+            call log%lap('estimate')
             call say_estimate(est)
-            t0 = wall_time()
          else if (istep == 1) then
             call log%say('  no error estimate: the model has second-order elements (the recovery is '// &
                          'for first-order elements; docs/error-estimate.md)')
@@ -316,13 +323,14 @@ contains
          call write_pvd(base//'.pvd', vtu_files, times, error, parts)
          if (allocated(error)) return
          done = istep
-         call log%phase('write', wall_time() - t0)
+         call log%lap('write')
          write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(u_out(1::2))), &
             ', max |u_y| ', maxval(abs(u_out(2::2))), ', rcond ', sys%solver%rcond()
          call log%say(trim(buf))
          call log%failed(error)
          if (allocated(error)) return
       end do
+      log%step = 0
       call h5%close(error, complete=.true.)
       if (allocated(error)) return
       call sys%solver%release()

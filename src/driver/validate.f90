@@ -240,8 +240,13 @@ contains
          return
       end if
       call polygon_defect(xy, kind, i, j, dist)
-      b = 'distance '//real_text(dist)//' for a diameter of '//real_text(h)//', below '// &
-          real_text(geom_rtol)//' of it'
+      if (kind == defect_none) then
+         b = ''
+      else
+         ! formatted only for a defect: three internal writes cost more than the checks
+         b = 'distance '//real_text(dist)//' for a diameter of '//real_text(h)//', below '// &
+             real_text(geom_rtol)//' of it'
+      end if
       select case (kind)
       case (defect_none)
       case (defect_coincident)

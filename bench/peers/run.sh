@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The peers' cantilever (issue 15; bench/peers/case.py): end-to-end time, phases,
+# peak memory and tip error of vemcontact on 1e5 Lloyd-Voronoi cells (uniform random
+# seeds, 20 Lloyd iterations, seed 1), with 1 and 2 OpenBLAS threads, with and
+# without a second busy process on the machine, and with CHOLMOD's own ordering
+# instead of METIS on the node graph.  The variants alternate within each repeat,
+# so that their ratios are measured under the same load.
+#
+#   usage: bench/peers/run.sh
+#   environment: CELLS (default 100000), SEED (1), LLOYD (20), REPEATS (3),
+#                VARIANTS (default "auto t1 t2 t1busy t2busy cholmod"),
+#                VC_BUILD (an existing Release build; default scripts/build.sh Release)
+# Writes bench/results/peers.csv (one line per run) and prints the fastest run of
+# each variant.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+root=$PWD
+cells=${CELLS:-100000}
+seed=${SEED:-1}
+lloyd=${LLOYD:-20}
+reps=${REPEATS:-3}
+variants=${VARIANTS:-"auto t1 t2 t1busy t2busy cholmod"}
+if [ -n "${VC_BUILD:-}" ]; then build=$VC_BUILD; else bash scripts/build.sh Release >/dev/null; build=$root/build; fi
+py=$root/.venv/bin/python
+work=$(mktemp -d)
+busy_pid=""
+cleanup() { [ -n "$busy_pid" ] && kill "$busy_pid" 2>/dev/null; rm -rf "$work"; }
+trap cleanup EXIT
+csv=bench/results/peers.csv
+mkdir -p bench/results
+
+t0=$(date +%s.%N)
+PYTHONPATH=$root/postprocess "$py" bench/peers/case.py deck "$work/case" --cells "$cells" --seed "$seed" --lloyd "$lloyd"
+echo "mesh and deck: $(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b - a}') s ($cells cells, seed $seed, $lloyd Lloyd iterations)"
+
+phases="read validate pattern assemble analyze factorize solve system stresses estimate write"
+echo "variant,rep,cells,unknowns,$(echo $phases | sed 's/\([a-z-]*\)/\1_s/g; s/ /,/g'),other_s,total_s,user_s,sys_s,peak_MB,tip_uy,tip_exact,tip_err,tip_rel_err,load" > "$csv"
+for rep in $(seq "$reps"); do
+  for v in $variants; do
+    opts=()
+    case $v in
+      auto) ;;
+      t1|t1busy) opts=(--blas-threads 1) ;;
+      t2|t2busy) opts=(--blas-threads 2) ;;
+      cholmod) opts=(--blas-threads 1 --ordering cholmod) ;;
+    esac
+    if [[ $v == *busy ]]; then
+      # a second busy process (a shell loop) for the duration of the run
+      bash -c 'while :; do :; done' & busy_pid=$!
+      sleep 1
+    fi
+    load=$(cut -d' ' -f1 /proc/loadavg)
+    out=$work/r_$v
+    rm -rf "$out"
+    env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS -u GOTO_NUM_THREADS \
+      /usr/bin/time -f "%U %S %M" -o "$work/time.txt" "$build/vemcontact" -q "${opts[@]}" -o "$out" "$work/case/beam.inp"
+    if [ -n "$busy_pid" ]; then kill "$busy_pid"; wait "$busy_pid" 2>/dev/null || true; busy_pid=""; fi
+    tip=$("$py" bench/peers/case.py tip "$out/beam.h5")
+    nodes=$("$py" -c "import h5py,sys; print(h5py.File(sys.argv[1])['mesh/coordinates'].shape[0])" "$out/beam.h5")
+    line=$(awk -F, -v list="$phases" '
+      NR > 1 && $3 == "" { if ($2 == "total") tot = $4; else { t[$2] += $4; all += $4 } }
+      END { n = split(list, p, " "); s = 0; out = ""
+            for (i = 1; i <= n; i++) { out = out sprintf("%.4g,", t[p[i]]); s += t[p[i]] }
+            printf "%s%.4g,%.4g", out, all - s, tot }' "$out/beam_phases.csv")
+    read -r user sys rss < "$work/time.txt"
+    echo "$v,$rep,$cells,$((2 * nodes)),$line,$user,$sys,$((rss / 1024)),$tip,$load" >> "$csv"
+    echo "  $v rep $rep: total $(echo "$line" | awk -F, '{print $NF}') s, load $load"
+  done
+done
+"$py" - "$csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+best = {}
+for r in rows:
+    if r["variant"] not in best or float(r["total_s"]) < float(best[r["variant"]]["total_s"]):
+        best[r["variant"]] = r
+print("fastest of each variant (s): variant total analyze factorize write user sys peak_MB tip_rel_err load")
+for v, r in best.items():
+    print(v, r["total_s"], r["analyze_s"], r["factorize_s"], r["write_s"], r["user_s"], r["sys_s"], r["peak_MB"],
+          r["tip_rel_err"], r["load"])
+PY
