@@ -2,11 +2,13 @@
 !> factorization calls).  OpenBLAS starts one thread per core; on a machine
 !> whose cores are busy with other work its threads spend their time waking
 !> and yielding, and two threads factorize more slowly than one
-!> (docs/performance.md, "BLAS threads").  So, unless the user chose
-!> (--blas-threads N, or OPENBLAS_NUM_THREADS / GOTO_NUM_THREADS /
-!> OMP_NUM_THREADS in the environment), the run uses the cores that are idle
-!> when it starts: the cores online minus the one-minute load average, rounded,
-!> at least 1.
+!> (docs/performance.md, "BLAS threads"), and on an unloaded one a second thread
+!> gained 1 %.  The thread count changes the round-off of the factorization, so a
+!> run that chose it from the machine's load would not repeat its own results to
+!> the bit.  Unless the user chose (--blas-threads N, or OPENBLAS_NUM_THREADS /
+!> GOTO_NUM_THREADS / OMP_NUM_THREADS in the environment) the run therefore uses
+!> one thread; `--blas-threads auto` uses the cores that are idle when it starts:
+!> the cores online minus the one-minute load average, rounded, at least 1.
 module vemcontact_app_blas_threads
    use, intrinsic :: iso_c_binding, only: c_int, c_double
    use vemcontact_kinds, only: wp
@@ -45,8 +47,8 @@ contains
       end if
    end function auto_blas_threads
 
-   !> Set the BLAS threads: `requested` (> 0), else the environment's choice is
-   !> kept, else auto_blas_threads.  `note`: one line for the log saying what was chosen and why.
+   !> Set the BLAS threads: `requested` (> 0), auto_blas_threads (`requested` < 0,
+   !> --blas-threads auto), else the environment's choice is kept, else one.  `note`: one line for the log saying what was chosen and why.
    subroutine set_blas_threads(requested, note)
       integer, intent(in) :: requested
       character(len=:), allocatable, intent(out) :: note
@@ -55,7 +57,7 @@ contains
       character(len=64) :: buf
       integer :: k, length, n, cores
       real(wp) :: load
-      if (requested <= 0) then
+      if (requested == 0) then
          do k = 1, size(vars)
             call get_environment_variable(trim(vars(k)), length=length)
             if (length > 0) then
@@ -70,9 +72,13 @@ contains
       if (requested > 0) then
          n = requested
          write (buf, '(a,i0,a)') 'BLAS threads ', n, ' (--blas-threads)'
-      else
+      else if (requested < 0) then
          n = auto_blas_threads(cores, load)
-         write (buf, '(a,i0,a,i0,a,f0.2,a)') 'BLAS threads ', n, ' (', cores, ' cores, load average ', load, ')'
+         write (buf, '(a,i0,a,i0,a,f0.2,a)') 'BLAS threads ', n, ' (auto: ', cores, ' cores, load average ', &
+            load, ')'
+      else
+         n = 1
+         buf = 'BLAS threads 1 (the default: --blas-threads N or auto for more)'
       end if
       note = trim(buf)
       if (c_set_blas_threads(int(n, c_int)) == 0) note = note//'; not set: the BLAS is not OpenBLAS'

@@ -24,7 +24,7 @@ module vemcontact_app_cli
       integer :: ordering = ordering_auto
       integer :: solver = solver_auto            !< vemcontact_solver_factory's solver_*
       character(len=:), allocatable :: petsc_options  !< PETSc's own options, for the PETSc solvers
-      integer :: blas_threads = 0                !< --blas-threads N; 0: vemcontact_app_blas_threads chooses
+      integer :: blas_threads = 0                !< --blas-threads N; -1: auto; 0: the environment's or 1
    end type cli_t
 
 contains
@@ -46,9 +46,10 @@ contains
           '                        (CG + BoomerAMG), mumps (MUMPS Cholesky)'//nl// &
           '  --petsc-options OPTS  PETSc''s own options for gamg, hypre, mumps, as one'//nl// &
           '                        string: "-ksp_rtol 1e-12 -pc_gamg_threshold 0.02"'//nl// &
-          '  --blas-threads N      BLAS (OpenBLAS) threads of the factorization; default:'//nl// &
-          '                        OPENBLAS_NUM_THREADS or OMP_NUM_THREADS if set, else the'//nl// &
-          '                        cores idle at the start (cores minus the load average)'//nl// &
+          '  --blas-threads N|auto BLAS (OpenBLAS) threads of the factorization; default:'//nl// &
+          '                        OPENBLAS_NUM_THREADS or OMP_NUM_THREADS if set, else 1'//nl// &
+          '                        (results repeat to the bit); auto: the cores idle at'//nl// &
+          '                        the start (cores minus the load average)'//nl// &
           '  --write-matrix        also write the first step''s matrix as JOB.mtx (Matrix Market)'//nl// &
           '  --raw-vtu             write the .vtu arrays uncompressed (default: zlib, as VTK''s'//nl// &
           '                        vtkZLibDataCompressor)'//nl// &
@@ -91,11 +92,15 @@ contains
             i = i + 1
             if (arg == '--blas-threads') then
                call get_arg(i, arg)
-               read (arg, *, iostat=stat) cli%blas_threads
-               if (stat /= 0 .or. verify(trim(arg), '0123456789') /= 0 .or. cli%blas_threads < 1) then
-                  call fatal_error(error, 'error: --blas-threads takes a whole number of at least 1, not "'// &
-                                   arg//'"', err_input)
-                  return
+               if (arg == 'auto') then
+                  cli%blas_threads = -1
+               else
+                  read (arg, *, iostat=stat) cli%blas_threads
+                  if (stat /= 0 .or. verify(trim(arg), '0123456789') /= 0 .or. cli%blas_threads < 1) then
+                     call fatal_error(error, 'error: --blas-threads takes auto or a whole number of at least 1, '// &
+                                      'not "'//arg//'"', err_input)
+                     return
+                  end if
                end if
             else if (arg == '--ordering') then
                call get_arg(i, arg)

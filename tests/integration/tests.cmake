@@ -22,12 +22,12 @@ add_test(NAME cli_version COMMAND vemcontact --version)
 set_tests_properties(cli_version PROPERTIES PASS_REGULAR_EXPRESSION "vemcontact [0-9]+\\.[0-9]+")
 add_test(NAME cli_unknown_option COMMAND vemcontact --frobnicate x.inp)
 set_tests_properties(cli_unknown_option PROPERTIES WILL_FAIL TRUE)
-# --blas-threads N: a whole number >= 1, else one clear message
+# --blas-threads N|auto: auto or a whole number >= 1, else one clear message
 add_test(NAME cli_blas_threads_bad COMMAND vemcontact --blas-threads 0 x.inp)
 set_tests_properties(cli_blas_threads_bad PROPERTIES WILL_FAIL TRUE)
 add_test(NAME cli_blas_threads_text COMMAND vemcontact --blas-threads two x.inp)
 set_tests_properties(cli_blas_threads_text PROPERTIES
-  PASS_REGULAR_EXPRESSION "--blas-threads takes a whole number of at least 1, not \"two\"")
+  PASS_REGULAR_EXPRESSION "--blas-threads takes auto or a whole number of at least 1, not \"two\"")
 vc_deck_test(missing_deck ${VC_DECKS}/does_not_exist.inp 2 "does_not_exist.inp")
 
 # bad input: exit status 1, one clear message naming file:line
