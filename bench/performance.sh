@@ -15,6 +15,7 @@
 #     VC_BUILD       an existing Release build directory  (default: scripts/build.sh Release, build/)
 #     MIN_FREE_GB    wait (up to 10 min) for this much available memory before a run
 #                    of 1e6 unknowns or more (default 14; the 4e6 runs peak at ~10 GB)
+#     OPENBLAS_NUM_THREADS  BLAS threads of both vemcontact and CHOLMOD alone (default 1)
 #     MESH_ORDER     2: the linear runs on second-order Voronoi meshes (k = 2 VEM, VPE2;
 #                    the mesher's `order = 2`, about 10 unknowns per cell), written to
 #                    bench/results/performance_linear_k2.csv (default 1)
@@ -46,6 +47,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p bench/results
 mesh_order=${MESH_ORDER:-1}
+# the same BLAS threads for vemcontact and CHOLMOD alone (vemcontact's default is one)
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 lcsv=bench/results/performance_linear.csv
 [ "$mesh_order" = 2 ] && lcsv=bench/results/performance_linear_k2.csv
 ccsv=bench/results/performance_contact.csv
@@ -82,6 +85,7 @@ run() {
     local t; t=$(awk '$1=="total"{print $2}' "$log")
     if [ -z "$best" ] || awk -v a="$t" -v b="$best" 'BEGIN{exit !(a < b)}'; then
       best=$t; cp "$log" "$work/best.log"
+      cp "$2/$(basename "$1" .inp)_phases.csv" "$work/best_phases.csv"
       peak_mb=$(awk '/Maximum resident/{printf "%.0f", $6/1024}' "$work/time.txt")
     fi
   done
@@ -97,7 +101,8 @@ cholmod() {
     if [ -z "$best" ] || awk -v a="$t" -v b="$best" 'BEGIN{exit !(a < b)}'; then best=$t; ref=$out; fi
   done
 }
-get() { awk -v k="$1" '$1==k {print $2; exit}' "$log"; }
+# a phase's seconds summed over the steps, from the run's JOB_phases.csv
+get() { awk -F, -v k="$1" '$2==k && $3=="" {s+=$4; n++} END{if (n) printf "%.3f", s}' "$work/best_phases.csv"; }
 
 body() {  # name x0 y0 x1 y1 cells
   printf '[[body]]\nname = "%s"\nrectangle = [%s, %s, %s, %s]\nmesher = "voronoi"\ncells = %s\n\n' "$@"
