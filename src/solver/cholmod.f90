@@ -17,7 +17,7 @@ module vemcontact_solver_cholmod
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_solver, err_internal
    use vemcontact_sparse_matrix, only: sym_csc_t
-   use vemcontact_solver_linear_solver, only: linear_solver_t
+   use vemcontact_solver_linear_solver, only: linear_solver_t, check_matrix_arrays
    implicit none
    private
 
@@ -131,7 +131,7 @@ contains
       self%flops = 0.0_wp
       self%supernodal = .false.
       if (allocated(self%ordering)) deallocate (self%ordering)
-      call check_arrays(a, .false., error)
+      call check_matrix_arrays(a, .false., 'CHOLMOD', error)
       if (allocated(error)) return
       if (.not. c_associated(self%handle)) then
          st = vc_cholmod_create(self%handle)
@@ -191,7 +191,7 @@ contains
          call fatal_error(error, 'CHOLMOD factorize called before analyze', err_internal)
          return
       end if
-      call check_arrays(a, .true., error)
+      call check_matrix_arrays(a, .true., 'CHOLMOD', error)
       if (allocated(error)) return
       st = vc_cholmod_factorize(self%handle, int(a%n, c_int64_t), a%col_ptr, a%row_idx, a%val, info)
       select case (st)
@@ -287,37 +287,6 @@ contains
       self%handle = c_null_ptr
    end subroutine finalize
 
-   ! Array sizes consistent with n, so the shim never reads past the end.
-   subroutine check_arrays(a, need_values, error)
-      type(sym_csc_t), intent(in) :: a
-      logical, intent(in) :: need_values
-      type(error_t), allocatable, intent(out) :: error
-      integer(i8) :: nnz
-
-      if (a%n < 0 .or. .not. allocated(a%col_ptr) .or. .not. allocated(a%row_idx)) then
-         call fatal_error(error, 'CHOLMOD: matrix not allocated', err_internal)
-         return
-      end if
-      if (size(a%col_ptr, kind=i8) /= int(a%n, i8) + 1) then
-         call fatal_error(error, 'CHOLMOD: col_ptr has the wrong length', err_internal)
-         return
-      end if
-      nnz = a%col_ptr(a%n + 1) - 1
-      if (nnz < 0 .or. size(a%row_idx, kind=i8) < nnz) then
-         call fatal_error(error, 'CHOLMOD: row_idx shorter than col_ptr says', err_internal)
-         return
-      end if
-      if (need_values) then
-         if (.not. allocated(a%val)) then
-            call fatal_error(error, 'CHOLMOD: matrix values not allocated', err_internal)
-            return
-         end if
-         if (size(a%val, kind=i8) < nnz) then
-            call fatal_error(error, 'CHOLMOD: val shorter than col_ptr says', err_internal)
-            return
-         end if
-      end if
-   end subroutine check_arrays
 
    subroutine solve_status(st, error)
       integer(c_int), intent(in) :: st

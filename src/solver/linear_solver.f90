@@ -14,12 +14,12 @@
 !> procedure): do not copy a solver with intrinsic assignment.
 module vemcontact_solver_linear_solver
    use vemcontact_kinds, only: wp, ip, i8
-   use vemcontact_error, only: error_t
+   use vemcontact_error, only: error_t, fatal_error, err_internal
    use vemcontact_sparse_matrix, only: sym_csc_t
    implicit none
    private
 
-   public :: linear_solver_t
+   public :: linear_solver_t, check_matrix_arrays
 
    !> A solver of A x = b for a symmetric positive definite A.
    type, abstract :: linear_solver_t
@@ -104,4 +104,35 @@ module vemcontact_solver_linear_solver
          character(len=:), allocatable :: s
       end function describe_i
    end interface
+contains
+   !> Whether the arrays of `a` are as long as its `n` says (`val` too when
+   !> `need_values`), so that a backend's C code never reads past their ends;
+   !> `backend` names the solver in the message.
+   subroutine check_matrix_arrays(a, need_values, backend, error)
+      type(sym_csc_t), intent(in) :: a
+      logical, intent(in) :: need_values
+      character(len=*), intent(in) :: backend
+      type(error_t), allocatable, intent(out) :: error
+      integer(i8) :: nnz
+      if (a%n < 0 .or. .not. allocated(a%col_ptr) .or. .not. allocated(a%row_idx)) then
+         call fatal_error(error, backend//': matrix not allocated', err_internal)
+         return
+      end if
+      if (size(a%col_ptr, kind=i8) /= int(a%n, i8) + 1) then
+         call fatal_error(error, backend//': col_ptr has the wrong length', err_internal)
+         return
+      end if
+      nnz = a%col_ptr(a%n + 1) - 1
+      if (nnz < 0 .or. size(a%row_idx, kind=i8) < nnz) then
+         call fatal_error(error, backend//': row_idx shorter than col_ptr says', err_internal)
+         return
+      end if
+      if (need_values) then
+         if (.not. allocated(a%val)) then
+            call fatal_error(error, backend//': matrix values not allocated', err_internal)
+         else if (size(a%val, kind=i8) < nnz) then
+            call fatal_error(error, backend//': val shorter than col_ptr says', err_internal)
+         end if
+      end if
+   end subroutine check_matrix_arrays
 end module vemcontact_solver_linear_solver

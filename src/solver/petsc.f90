@@ -31,7 +31,7 @@ module vemcontact_solver_petsc
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_solver, err_internal, err_input
    use vemcontact_sparse_matrix, only: sym_csc_t
-   use vemcontact_solver_linear_solver, only: linear_solver_t
+   use vemcontact_solver_linear_solver, only: linear_solver_t, check_matrix_arrays
    implicit none
    private
 
@@ -203,7 +203,7 @@ contains
       self%nnz_factor = 0
       self%flops = 0.0_wp
       self%iterations = 0
-      call check_arrays(a, .false., error)
+      call check_matrix_arrays(a, .false., 'PETSc', error)
       if (allocated(error)) return
       st = vc_petsc_initialize(c_null_char)
       if (st /= st_ok) then
@@ -266,7 +266,7 @@ contains
          call fatal_error(error, 'PETSc factorize called before analyze', err_internal)
          return
       end if
-      call check_arrays(a, .true., error)
+      call check_matrix_arrays(a, .true., 'PETSc', error)
       if (allocated(error)) return
       st = vc_petsc_factorize(self%handle, int(a%n, c_int64_t), a%val, real(self%rtol, c_double), &
                               int(self%max_iterations, c_int))
@@ -375,33 +375,6 @@ contains
       end select
    end subroutine solve_status
 
-   ! Array sizes consistent with n, so the shim never reads past the end.
-   subroutine check_arrays(a, need_values, error)
-      type(sym_csc_t), intent(in) :: a
-      logical, intent(in) :: need_values
-      type(error_t), allocatable, intent(out) :: error
-      integer(i8) :: nnz
-      if (a%n < 0 .or. .not. allocated(a%col_ptr) .or. .not. allocated(a%row_idx)) then
-         call fatal_error(error, 'PETSc: matrix not allocated', err_internal)
-         return
-      end if
-      if (size(a%col_ptr, kind=i8) /= int(a%n, i8) + 1) then
-         call fatal_error(error, 'PETSc: col_ptr has the wrong length', err_internal)
-         return
-      end if
-      nnz = a%col_ptr(a%n + 1) - 1
-      if (nnz < 0 .or. size(a%row_idx, kind=i8) < nnz) then
-         call fatal_error(error, 'PETSc: row_idx shorter than col_ptr says', err_internal)
-         return
-      end if
-      if (need_values) then
-         if (.not. allocated(a%val)) then
-            call fatal_error(error, 'PETSc: matrix values not allocated', err_internal)
-         else if (size(a%val, kind=i8) < nnz) then
-            call fatal_error(error, 'PETSc: val shorter than col_ptr says', err_internal)
-         end if
-      end if
-   end subroutine check_arrays
 
    ! The shim's message for a status (PETSc's own text where there is one).
    function status_text(st, handle) result(s)
