@@ -1,5 +1,5 @@
-"""The error estimate's fields follow the output requests (written with S) and are
-left out, with one log note, for models with second-order elements."""
+"""The error estimate's fields follow the output requests (written with S), for models
+with first- and with second-order elements."""
 import subprocess
 
 import h5py
@@ -78,8 +78,15 @@ def test_indicator_follows_the_stress_request(exe, tmp_path, requests, written):
         assert attrs["error_estimate"] > 0
 
 
-def test_no_estimate_for_second_order_elements(exe, tmp_path):
-    h5, attrs, cells = run(exe, tmp_path, deck(2))
-    assert "ERROR_INDICATOR" not in h5 and "ERROR_INDICATOR" not in cells
-    assert "error_estimate" not in attrs
-    assert "S_element" in h5 and "S" in cells            # the rest is written as usual
+@pytest.mark.parametrize("requests, written", [("", True), ("*NODE FILE\nU\n*EL FILE\nE\n", False)])
+def test_estimate_for_second_order_elements(exe, tmp_path, requests, written):
+    """CPE8 cells get the second-order recovery's indicators, written like the k = 1 ones."""
+    h5, attrs, cells = run(exe, tmp_path, deck(2, requests))
+    assert ("ERROR_INDICATOR" in h5) == written and ("ERROR_INDICATOR" in cells) == written
+    assert ("error_estimate" in attrs) == written
+    if written:
+        vtu = np.concatenate(cells["ERROR_INDICATOR"])
+        np.testing.assert_array_equal(vtu, h5["ERROR_INDICATOR"])
+        assert vtu.shape == (2,) and (vtu > 0).all()
+        assert attrs["error_estimate"] == pytest.approx(np.sqrt(np.sum(vtu**2)), rel=1e-12)
+        assert "S_element" in h5 and "S" in cells

@@ -15,7 +15,7 @@ module vemcontact_driver_static
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
    use vemcontact_post_stress, only: nodal_average
-   use vemcontact_post_estimate, only: error_estimate_t, estimate_error
+   use vemcontact_post_estimate, only: error_estimate_t, estimate_error, estimate_error2
    use vemcontact_post_reactions, only: reaction_forces, constrained_sets
    use vemcontact_post_labels, only: element_section_sets, element_parts
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
@@ -237,16 +237,15 @@ contains
             call nodal_average(model, extra%e_elem, extra%e_node)
          end if
          call log%lap('stresses')
-         ! the recovery-based error estimate (first-order elements only: the
-         ! recovery compares a linear field with the constant element stress)
+         ! the recovery-based error estimate: second-order models recover a quadratic
+         ! stress from the cells' own linear stresses (s_at)
          if (.not. allocated(s_at)) then
             call estimate_error(model, s_elem, est)
-            call log%lap('estimate')
-            call say_estimate(est)
-         else if (istep == 1) then
-            call log%say('  no error estimate: the model has second-order elements (the recovery is '// &
-                         'for first-order elements; docs/error-estimate.md)')
+         else
+            call estimate_error2(model, s_at, est)
          end if
+         call log%lap('estimate')
+         call say_estimate(est)
          ! reactions: K u - f_ext at the constrained dofs, with the loads in force
          call sys%elastic_times(u, ku)
          call assemble_loads(model, st%force, st%dload, f)
