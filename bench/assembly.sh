@@ -5,7 +5,8 @@
 # kernels + scatter by a binary search per node pair (the assembly before issue 15)
 # and assemble_stiffness (one walk per column); bench_assembly_rate keeps the fastest of
 # REPEATS runs of each, in processor time (the loops are serial, so the load of the
-# shared machine does not count).  Each mesh is run as the mesher numbers it and
+# shared machine does not count).  Each mesh is run as the mesher numbers it (along
+# a Hilbert curve, vctools.mesh.mesh.spatial_order) and
 # renumbered in Z order (bench/renumber_mesh.py): the effect of the node numbering.
 #
 #   usage: bench/assembly.sh     environment: SIZES (default "1e4 1e5 1e6"), REPEATS (5),

@@ -395,3 +395,72 @@ def split_joint(m, name, polyline, master_side, tol):
         {"name": name, "polyline": polyline, "copies": copies, "shared": shared,
          "master": (mcells[o], msides[o]), "slave": snodes})
     return m
+
+
+def hilbert_key(xy, bits=16):
+    """Index of each point along a Hilbert curve over the points' bounding box
+    (2**bits cells a side): points close on the curve are close in the plane."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    if len(xy) == 0:
+        return np.zeros(0, np.int64)
+    lo, span = xy.min(0), np.ptp(xy, 0)
+    span[span == 0] = 1.0
+    side = 1 << bits
+    x, y = (np.minimum(((xy - lo) / span * side).astype(np.int64), side - 1)).T
+    x, y = x.copy(), y.copy()
+    key = np.zeros(len(xy), np.int64)
+    s = side >> 1
+    while s > 0:
+        rx = (x & s) > 0
+        ry = (y & s) > 0
+        key += s * s * ((3 * rx) ^ ry)
+        # rotate the quadrant so that the curve inside it starts and ends right
+        flip = ~ry
+        swap_rx = flip & rx
+        x[swap_rx] = side - 1 - x[swap_rx]
+        y[swap_rx] = side - 1 - y[swap_rx]
+        x[flip], y[flip] = y[flip], x[flip].copy()
+        s >>= 1
+    return key
+
+
+def spatial_order(m):
+    """Renumber the nodes and the cells of `m` in place along a Hilbert curve (nodes
+    by their coordinates, cells by their centroids, cells kept grouped by body in
+    body order), so that the nodes of a cell and the cells of a neighbourhood are
+    close in memory: the solver's assembly and pattern build run faster on such
+    meshes.  Sets, surfaces, second-order side nodes and the joints' records follow."""
+    if len(m.nodes) == 0 or m.ncell == 0:
+        return m
+    norder = np.argsort(hilbert_key(m.nodes), kind="stable")
+    nnew = np.empty(len(norder), np.int64)
+    nnew[norder] = np.arange(len(norder))
+    cell = m.cell_index()
+    cent = np.zeros((m.ncell, 2))
+    cnt = np.diff(m.ptr)
+    for d in range(2):
+        cent[:, d] = np.bincount(cell, weights=m.nodes[m.conn, d], minlength=m.ncell) / np.maximum(cnt, 1)
+    corder = np.lexsort((hilbert_key(cent), m.cell_body))
+    cnew = np.empty(len(corder), np.int64)
+    cnew[corder] = np.arange(len(corder))
+    # positions of the old conn entries, cell by cell in the new order
+    ncnt = cnt[corder]
+    ptr = np.concatenate([[0], np.cumsum(ncnt)]).astype(m.ptr.dtype)
+    pos = np.repeat(m.ptr[:-1][corder] - ptr[:-1], ncnt) + np.arange(ptr[-1])
+    m.nodes = m.nodes[norder]
+    m.conn = nnew[m.conn[pos]]
+    if m.side_nodes is not None:
+        m.side_nodes = nnew[m.side_nodes[pos]]
+    m.ptr = ptr
+    m.cell_body = m.cell_body[corder]
+    m.nsets = {k: nnew[np.asarray(v, np.int64)] for k, v in m.nsets.items()}
+    m.nsurfaces = {k: nnew[np.asarray(v, np.int64)] for k, v in m.nsurfaces.items()}
+    m.elsets = {k: cnew[np.asarray(v, np.int64)] for k, v in m.elsets.items()}
+    m.esurfaces = {k: (cnew[np.asarray(c, np.int64)], s) for k, (c, s) in m.esurfaces.items()}
+    for j in m.info.get("joints", []):
+        j["shared"] = nnew[np.asarray(j["shared"], np.int64)]
+        j["slave"] = nnew[np.asarray(j["slave"], np.int64)]
+        c, s = j["master"]
+        j["master"] = (cnew[np.asarray(c, np.int64)], s)
+        j["copies"] = {int(nnew[k]): [int(nnew[v]) for v in vs] for k, vs in j["copies"].items()}
+    return m

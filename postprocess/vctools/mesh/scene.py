@@ -10,7 +10,7 @@ import numpy as np
 from .deck import element_type, write_deck
 from .errors import MeshError
 from .geometry import as_points, check_simple_polygon, diameter
-from .mesh import add_side_nodes, add_side_nodes_to_sets, concatenate
+from .mesh import add_side_nodes, add_side_nodes_to_sets, concatenate, spatial_order
 from .polymesh import Joint, VBody, voronoi_group
 from .quality import report_lines
 from .select import add_contact, add_selection
@@ -219,6 +219,8 @@ def build(scene, seed=None, verbose=False, processes=None):
     for k, c in enumerate(scene.get("contact", [])):
         add_contact(m, c.get("name") or f"CONTACT{k + 1}", c, tol)
     add_side_nodes_to_sets(m)
+    # nodes and cells numbered along a Hilbert curve: cache-friendly assembly
+    spatial_order(m)
     m.info["title"] = opts.get("title", "")
     m.info["seed"] = seed
     return m
