@@ -10,7 +10,9 @@ vctools.mesh, so that a 1e7-unknown deck takes seconds to generate.
            [--csv bench/results/scale.csv] [--compare DIR_A DIR_B]
 
 Every run is started under `nice -n 19` and single (the machine is shared).  Peak RSS:
-`/usr/bin/time -f %M` wraps every rank (one file per rank).  Rows are appended to the CSV:
+`/usr/bin/time -f '%M %U %S'` wraps every rank (one file per rank), which also gives the
+processor time (user + system, summed over ranks: steadier than wall time on a loaded
+machine); CG's iteration count comes from PETSc's -ksp_converged_reason.  Rows are appended to the CSV:
 one per run with the phases as columns (summed over steps), the tip deflection's error
 against the exact plane-strain value and the peak RSS of the largest rank and of all.
 `--compare A B` prints max|U_A - U_B| / max|U_B| of two result folders' HDF5 files.
@@ -21,6 +23,7 @@ import argparse
 import csv
 import glob
 import os
+import re
 import subprocess
 import sys
 import time
@@ -80,7 +83,9 @@ def run(exe, deck, out, solver, ranks):
     for f in glob.glob(os.path.join(out, "rss.*")):
         os.remove(f)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    inner = f"/usr/bin/time -f %M -o {out}/rss.${{OMPI_COMM_WORLD_RANK:-0}} {exe} -q --solver {solver} -o {out} {deck}"
+    # peak RSS (kB), user and system processor time (s) of each rank; CG's iteration count
+    inner = (f"/usr/bin/time -f '%M %U %S' -o {out}/rss.${{OMPI_COMM_WORLD_RANK:-0}} {exe} -q --solver {solver}"
+             f" --petsc-options -ksp_converged_reason -o {out} {deck}")
     cmd = ["nice", "-n", "19"] + (["mpiexec", "-n", str(ranks)] if ranks > 1 else []) + ["sh", "-c", inner]
     load = os.getloadavg()[0]
     t0 = time.time()
@@ -88,10 +93,13 @@ def run(exe, deck, out, solver, ranks):
     wall = time.time() - t0
     if r.returncode != 0:
         raise RuntimeError(f"run failed: {r.stdout}\n{r.stderr}")
-    rss = []
+    rss, cpu = [], []
     for f in sorted(glob.glob(os.path.join(out, "rss.*"))):
         with open(f) as fh:
-            rss.append(int(fh.read().split()[-1]) / 1024 ** 2)
+            kb, user, system = fh.read().split()[-3:]
+        rss.append(int(kb) / 1024 ** 2)
+        cpu.append(float(user) + float(system))
+    its = [int(m) for m in re.findall(r"CONVERGED_\w+ iterations (\d+)", r.stdout)]
     job = os.path.splitext(os.path.basename(deck))[0]
     ph = {}
     with open(os.path.join(out, job + "_phases.csv")) as fh:
@@ -101,7 +109,7 @@ def run(exe, deck, out, solver, ranks):
     with h5py.File(os.path.join(out, job + ".h5"), "r") as fh:
         x = fh["mesh/coordinates"][()]
         u = fh["steps/0001/U"][()]
-    return dict(phases=ph, wall=wall, rss=rss, load=load, x=x, u=u)
+    return dict(phases=ph, wall=wall, rss=rss, cpu=cpu, its=its[0] if its else "", load=load, x=x, u=u)
 
 
 def compare(a, b):
@@ -136,13 +144,15 @@ def main():
         row = dict(mesh=desc, unknowns=ndof, solver=a.solver, ranks=a.ranks,
                    **{k: round(v, 3) for k, v in res["phases"].items()}, wall=round(res["wall"], 2),
                    peak_rss_gb_max=round(max(res["rss"]), 2), peak_rss_gb_sum=round(sum(res["rss"]), 2),
+                   cpu_s_sum=round(sum(res["cpu"]), 1), cg_iterations=res["its"],
                    tip_error=f"{tip_error(res['x'], res['u'], case):.3e}", load=round(res["load"], 1),
                    utc=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()))
         print(row, flush=True)
         new = not os.path.exists(a.csv)
         fields = ["mesh", "unknowns", "solver", "ranks", "start", "read", "validate", "pattern", "assemble",
                   "analyze", "set-up", "write mesh", "factorize", "solve", "system", "stresses", "estimate",
-                  "write", "finish", "total", "wall", "peak_rss_gb_max", "peak_rss_gb_sum", "tip_error",
+                  "write", "finish", "total", "wall", "peak_rss_gb_max", "peak_rss_gb_sum", "cpu_s_sum",
+                  "cg_iterations", "tip_error",
                   "load", "utc"]
         with open(a.csv, "a", newline="") as fh:
             w = csv.DictWriter(fh, fieldnames=fields, extrasaction="ignore", restval="")
