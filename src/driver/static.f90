@@ -15,7 +15,8 @@ module vemcontact_driver_static
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
    use vemcontact_post_stress, only: nodal_average
-   use vemcontact_post_estimate, only: error_estimate_t, estimate_error, estimate_error2
+   use vemcontact_post_estimate, only: error_estimate_t, estimate_error
+   use vemcontact_post_estimate2, only: estimate_error2
    use vemcontact_post_reactions, only: reaction_forces, constrained_sets
    use vemcontact_post_labels, only: element_section_sets, element_parts
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
