@@ -42,9 +42,9 @@ contains
           '  --ordering METHOD     fill-reducing ordering: auto (default), metis (METIS on'//nl// &
           '                        the node graph), cholmod (CHOLMOD''s default strategy)'//nl// &
           '  --solver NAME         linear solver: auto (default: cholmod below 200000'//nl// &
-          '                        unknowns, gamg from there on if built with PETSc),'//nl// &
-          '                        cholmod (sparse Cholesky), and with PETSc: gamg'//nl// &
-          '                        (CG + GAMG), hypre'//nl// &
+          '                        unknowns or with contact, else gamg if built with'//nl// &
+          '                        PETSc), cholmod (sparse Cholesky), and with PETSc:'//nl// &
+          '                        gamg (CG + GAMG), hypre'//nl// &
           '                        (CG + BoomerAMG), mumps (MUMPS Cholesky)'//nl// &
           '  --petsc-options OPTS  PETSc''s own options for gamg, hypre, mumps, as one'//nl// &
           '                        string: "-ksp_rtol 1e-12 -pc_gamg_threshold 0.02"'//nl// &

@@ -32,7 +32,7 @@ program vemcontact_main
    type(job_lock_t) :: lock
    real(wp) :: tstart
    integer :: nremoved, iw, rank
-   logical :: solver_chosen
+   logical :: solver_chosen, has_contact
    character(len=:), allocatable :: job, note
    character(len=16) :: buf
    character(len=120) :: why
@@ -114,12 +114,16 @@ program vemcontact_main
          if (allocated(error)) call fail(error)
       end if
    end if
-   ! `auto` by the number of unknowns (vemcontact_solver_factory's auto_solver): a
+   ! `auto` by the number of unknowns and contact (vemcontact_solver_factory's auto_solver): a
    ! one-process run starts PETSc only when that is gamg; without PETSc it stays cholmod
    if (cli%solver == solver_auto) then
-      cli%solver = auto_solver(2_i8*model%nnode, petsc_ranks())
+      has_contact = .false.
+      if (allocated(model%pairs)) has_contact = size(model%pairs) > 0
+      cli%solver = auto_solver(2_i8*model%nnode, petsc_ranks(), has_contact)
       if (petsc_ranks() > 1) then
          why = 'several processes'
+      else if (has_contact) then
+         write (why, '(i0,a)') 2_i8*model%nnode, ' unknowns, contact pairs: a direct solver for the contact iteration'
       else if (cli%solver == solver_gamg) then
          write (why, '(i0,a,i0,a)') 2_i8*model%nnode, ' unknowns >= ', auto_gamg_unknowns, ' (measured crossover)'
          call petsc_initialize(cli%petsc_options, error)

@@ -17,8 +17,8 @@ module vemcontact_solver_factory
       solver_mumps = 4
    !> Names of the backends, indexed by solver_*.
    character(len=*), parameter :: names(0:4) = [character(len=7) :: 'auto', 'cholmod', 'gamg', 'hypre', 'mumps']
-   !> Unknowns from which `auto` takes gamg on one process: the measured crossover of
-   !> end-to-end time on Lloyd-Voronoi meshes (docs/performance.md, "PETSc solvers").
+   !> Unknowns from which `auto` takes gamg on one process without contact: the measured
+   !> crossover of end-to-end time on Lloyd-Voronoi meshes (docs/performance.md, "PETSc solvers").
    integer(i8), parameter, public :: auto_gamg_unknowns = 200000_i8
 
 contains
@@ -33,12 +33,16 @@ contains
       end do
    end function solver_kind
 
-   !> The backend `auto` stands for with `unknowns` unknowns on `ranks` processes:
-   !> gamg on several processes or from auto_gamg_unknowns unknowns on, else cholmod.
-   pure integer function auto_solver(unknowns, ranks) result(k)
+   !> The backend `auto` stands for with `unknowns` unknowns on `ranks` processes, for
+   !> a model with contact pairs if `contact`: gamg on several processes; on one, gamg
+   !> from auto_gamg_unknowns unknowns on for a model without contact, else cholmod (the
+   !> contact iteration's many solves per step cost a CG solve each: 11 times CHOLMOD's
+   !> time measured at 4e5 unknowns, docs/performance.md).
+   pure integer function auto_solver(unknowns, ranks, contact) result(k)
       integer(i8), intent(in) :: unknowns
       integer, intent(in) :: ranks
-      if (ranks > 1 .or. unknowns >= auto_gamg_unknowns) then
+      logical, intent(in) :: contact
+      if (ranks > 1 .or. (unknowns >= auto_gamg_unknowns .and. .not. contact)) then
          k = solver_gamg
       else
          k = solver_cholmod
