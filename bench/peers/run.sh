@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # The peers' cantilever (issue 15; bench/peers/case.py): end-to-end time, phases,
 # peak memory and tip error of vemcontact on 1e5 Lloyd-Voronoi cells (uniform random
-# seeds, 20 Lloyd iterations, seed 1), with 1 and 2 OpenBLAS threads, with and
+# seeds, 20 Lloyd iterations, seed 1): `auto` with the solver vemcontact picks itself
+# (gamg at this size), and CHOLMOD (t1, t2, ...) with 1 and 2 OpenBLAS threads, with and
 # without a second busy process on the machine, and with CHOLMOD's own ordering
-# instead of METIS on the node graph.  The variants alternate within each repeat,
+# instead of METIS on the node graph, and with the PETSc solvers (gamg, hypre, mumps:
+# --solver, one BLAS thread).  The variants alternate within each repeat,
 # so that their ratios are measured under the same load.
 #
 #   usage: bench/peers/run.sh
 #   environment: CELLS (default 100000), SEED (1), LLOYD (20), REPEATS (3),
 #                VARIANTS (default "auto t1 t2 t1busy t2busy cholmod"),
-#                VC_BUILD (an existing Release build; default scripts/build.sh Release)
-# Writes bench/results/peers.csv (one line per run) and prints the fastest run of
+#                VC_BUILD (an existing Release build; default scripts/build.sh Release),
+#                CSV (default bench/results/peers.csv)
+# e.g. VARIANTS="t1 gamg hypre mumps" CSV=bench/results/peers_solvers.csv bench/peers/run.sh
+# Writes $CSV (one line per run) and prints the fastest run of
 # each variant.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -26,7 +30,7 @@ work=$(mktemp -d)
 busy_pid=""
 cleanup() { [ -n "$busy_pid" ] && kill "$busy_pid" 2>/dev/null; rm -rf "$work"; }
 trap cleanup EXIT
-csv=bench/results/peers.csv
+csv=${CSV:-bench/results/peers.csv}
 mkdir -p bench/results
 
 t0=$(date +%s.%N)
@@ -34,15 +38,16 @@ PYTHONPATH=$root/postprocess "$py" bench/peers/case.py deck "$work/case" --cells
 echo "mesh and deck: $(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b - a}') s ($cells cells, seed $seed, $lloyd Lloyd iterations)"
 
 phases="read validate pattern assemble analyze factorize solve system stresses estimate write"
-echo "variant,rep,cells,unknowns,$(echo $phases | sed 's/\([a-z-]*\)/\1_s/g; s/ /,/g'),other_s,total_s,user_s,sys_s,peak_MB,tip_uy,tip_exact,tip_err,tip_rel_err,load" > "$csv"
+echo "variant,rep,cells,unknowns,$(echo $phases | sed 's/\([a-z-]*\)/\1_s/g; s/ /,/g'),other_s,total_s,user_s,sys_s,peak_MB,tip_uy,tip_exact,tip_err,tip_rel_err,load,solver" > "$csv"
 for rep in $(seq "$reps"); do
   for v in $variants; do
     opts=()
     case $v in
       auto) ;;
-      t1|t1busy) opts=(--blas-threads 1) ;;
-      t2|t2busy) opts=(--blas-threads 2) ;;
-      cholmod) opts=(--blas-threads 1 --ordering cholmod) ;;
+      t1|t1busy) opts=(--solver cholmod --blas-threads 1) ;;
+      t2|t2busy) opts=(--solver cholmod --blas-threads 2) ;;
+      cholmod) opts=(--solver cholmod --blas-threads 1 --ordering cholmod) ;;
+      gamg|hypre|mumps) opts=(--blas-threads 1 --solver "$v") ;;
     esac
     if [[ $v == *busy ]]; then
       # a second busy process (a shell loop) for the duration of the run
@@ -57,13 +62,15 @@ for rep in $(seq "$reps"); do
     if [ -n "$busy_pid" ]; then kill "$busy_pid"; wait "$busy_pid" 2>/dev/null || true; busy_pid=""; fi
     tip=$("$py" bench/peers/case.py tip "$out/beam.h5")
     nodes=$("$py" -c "import h5py,sys; print(h5py.File(sys.argv[1])['mesh/coordinates'].shape[0])" "$out/beam.h5")
+    # the solver that ran (HDF5 root attribute `solver`; its first word)
+    solver=$("$py" -c "import h5py,sys; a=h5py.File(sys.argv[1]).attrs['solver']; print((a.decode() if isinstance(a, bytes) else str(a)).split()[0])" "$out/beam.h5")
     line=$(awk -F, -v list="$phases" '
       NR > 1 && $3 == "" { if ($2 == "total") tot = $4; else { t[$2] += $4; all += $4 } }
       END { n = split(list, p, " "); s = 0; out = ""
             for (i = 1; i <= n; i++) { out = out sprintf("%.4g,", t[p[i]]); s += t[p[i]] }
             printf "%s%.4g,%.4g", out, all - s, tot }' "$out/beam_phases.csv")
     read -r user sys rss < "$work/time.txt"
-    echo "$v,$rep,$cells,$((2 * nodes)),$line,$user,$sys,$((rss / 1024)),$tip,$load" >> "$csv"
+    echo "$v,$rep,$cells,$((2 * nodes)),$line,$user,$sys,$((rss / 1024)),$tip,$load,$solver" >> "$csv"
     echo "  $v rep $rep: total $(echo "$line" | awk -F, '{print $NF}') s, load $load"
   done
 done

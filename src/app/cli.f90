@@ -41,8 +41,10 @@ contains
           '  -o, --output DIR      write results into DIR (created if missing)'//nl// &
           '  --ordering METHOD     fill-reducing ordering: auto (default), metis (METIS on'//nl// &
           '                        the node graph), cholmod (CHOLMOD''s default strategy)'//nl// &
-          '  --solver NAME         linear solver: auto (default: cholmod), cholmod (sparse'//nl// &
-          '                        Cholesky), and with PETSc: gamg (CG + GAMG), hypre'//nl// &
+          '  --solver NAME         linear solver: auto (default: cholmod below 200000'//nl// &
+          '                        unknowns or with contact, else gamg if built with'//nl// &
+          '                        PETSc), cholmod (sparse Cholesky), and with PETSc:'//nl// &
+          '                        gamg (CG + GAMG), hypre'//nl// &
           '                        (CG + BoomerAMG), mumps (MUMPS Cholesky)'//nl// &
           '  --petsc-options OPTS  PETSc''s own options for gamg, hypre, mumps, as one'//nl// &
           '                        string: "-ksp_rtol 1e-12 -pc_gamg_threshold 0.02"'//nl// &

@@ -6,7 +6,7 @@
 !> Exit status: 0 success, 1 bad input, 2 file error, 3 model not solvable,
 !> 4 solver failure, 5 internal error.
 program vemcontact_main
-   use vemcontact_kinds, only: wp
+   use vemcontact_kinds, only: wp, i8
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_model, only: model_t
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
@@ -17,7 +17,8 @@ program vemcontact_main
    use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
-   use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_kind
+   use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_cholmod, solver_kind, &
+      auto_solver, auto_gamg_unknowns
    use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
    use vemcontact_output_phases, only: write_phases
    use vemcontact_app_blas_threads, only: set_blas_threads
@@ -31,9 +32,10 @@ program vemcontact_main
    type(job_lock_t) :: lock
    real(wp) :: tstart
    integer :: nremoved, iw, rank
-   logical :: solver_chosen
+   logical :: solver_chosen, has_contact
    character(len=:), allocatable :: job, note
    character(len=16) :: buf
+   character(len=120) :: why
 
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
@@ -112,7 +114,30 @@ program vemcontact_main
          if (allocated(error)) call fail(error)
       end if
    end if
-   ! reading ends with the deck's choice of solver (and PETSc's start for it)
+   ! `auto` by the number of unknowns and contact (vemcontact_solver_factory's auto_solver): a
+   ! one-process run starts PETSc only when that is gamg; without PETSc it stays cholmod
+   if (cli%solver == solver_auto) then
+      has_contact = .false.
+      if (allocated(model%pairs)) has_contact = size(model%pairs) > 0
+      cli%solver = auto_solver(2_i8*model%nnode, petsc_ranks(), has_contact)
+      if (petsc_ranks() > 1) then
+         why = 'several processes'
+      else if (has_contact) then
+         write (why, '(i0,a)') 2_i8*model%nnode, ' unknowns, contact pairs: a direct solver for the contact iteration'
+      else if (cli%solver == solver_gamg) then
+         write (why, '(i0,a,i0,a)') 2_i8*model%nnode, ' unknowns >= ', auto_gamg_unknowns, ' (measured crossover)'
+         call petsc_initialize(cli%petsc_options, error)
+         if (allocated(error)) then
+            deallocate (error)
+            cli%solver = solver_cholmod
+            why = trim(why)//', but built without PETSc (or it could not start)'
+         end if
+      else
+         write (why, '(i0,a,i0)') 2_i8*model%nnode, ' unknowns < ', auto_gamg_unknowns
+      end if
+      call log%say('  solver auto: '//trim(merge('gamg   ', 'cholmod', cli%solver == solver_gamg))//' ('//trim(why)//')')
+   end if
+   ! reading ends with the choice of solver (and PETSc's start for it)
    call log%lap('read')
 
    opts%out_dir = cli%out_dir

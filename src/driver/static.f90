@@ -164,7 +164,7 @@ contains
       call log%lap('set-up')
 
       base = opts%out_dir//'/'//opts%job
-      call h5%open(base//'.h5', error)
+      call h5%open(base//'.h5', error, solver=sys%solver%describe())
       if (allocated(error)) return
       call h5%write_mesh(model, error)
       if (allocated(error)) then

@@ -68,11 +68,13 @@ module vemcontact_output_hdf5
 contains
 
    !> Start the file `path` (as a new temporary beside it), write the root
-   !> attributes and /steps.
-   subroutine h5_open(self, path, error)
+   !> attributes (with `solver`: the linear solver that ran, root attribute `solver`)
+   !> and /steps.
+   subroutine h5_open(self, path, error, solver)
       class(h5_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path
       type(error_t), allocatable, intent(out) :: error
+      character(len=*), intent(in), optional :: solver
       integer :: hdferr
       integer(hid_t) :: grp
 
@@ -98,6 +100,10 @@ contains
       if (allocated(error)) return
       call put_int_attribute(self, self%file, 'format_version', h5_format_version, error)
       if (allocated(error)) return
+      if (present(solver)) then
+         call put_string_attribute(self, self%file, 'solver', solver, error)
+         if (allocated(error)) return
+      end if
       call h5gcreate_f(self%file, 'steps', grp, hdferr)
       if (failed(self, hdferr, 'creating group /steps', error)) return
       call h5gclose_f(grp, hdferr)

@@ -1,6 +1,7 @@
 !> The linear solver backends by name: the names the command line takes and the
 !> `linear_solver_t` of a name.
 module vemcontact_solver_factory
+   use vemcontact_kinds, only: i8
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_solver_linear_solver, only: linear_solver_t
    use vemcontact_solver_cholmod, only: cholmod_solver_t
@@ -8,14 +9,17 @@ module vemcontact_solver_factory
    implicit none
    private
 
-   public :: solver_kind, solver_names, make_solver, uses_petsc
+   public :: solver_kind, solver_names, make_solver, uses_petsc, auto_solver
 
-   !> The backends: `auto` lets the driver choose (CHOLMOD for every size today);
+   !> The backends: `auto` is resolved by auto_solver once the deck is read;
    !> gamg, hypre and mumps are PETSc's (vemcontact_solver_petsc).
    integer, parameter, public :: solver_auto = 0, solver_cholmod = 1, solver_gamg = 2, solver_hypre = 3, &
       solver_mumps = 4
    !> Names of the backends, indexed by solver_*.
    character(len=*), parameter :: names(0:4) = [character(len=7) :: 'auto', 'cholmod', 'gamg', 'hypre', 'mumps']
+   !> Unknowns from which `auto` takes gamg on one process without contact: the measured
+   !> crossover of end-to-end time on Lloyd-Voronoi meshes (docs/performance.md, "PETSc solvers").
+   integer(i8), parameter, public :: auto_gamg_unknowns = 200000_i8
 
 contains
 
@@ -29,6 +33,22 @@ contains
       end do
    end function solver_kind
 
+   !> The backend `auto` stands for with `unknowns` unknowns on `ranks` processes, for
+   !> a model with contact pairs if `contact`: gamg on several processes; on one, gamg
+   !> from auto_gamg_unknowns unknowns on for a model without contact, else cholmod (the
+   !> contact iteration's many solves per step cost a CG solve each: 11 times CHOLMOD's
+   !> time measured at 4e5 unknowns, docs/performance.md).
+   pure integer function auto_solver(unknowns, ranks, contact) result(k)
+      integer(i8), intent(in) :: unknowns
+      integer, intent(in) :: ranks
+      logical, intent(in) :: contact
+      if (ranks > 1 .or. (unknowns >= auto_gamg_unknowns .and. .not. contact)) then
+         k = solver_gamg
+      else
+         k = solver_cholmod
+      end if
+   end function auto_solver
+
    !> 'auto, cholmod, gamg, hypre, mumps': the names solver_kind knows, for messages and help.
    pure function solver_names() result(s)
       character(len=:), allocatable :: s
@@ -39,7 +59,7 @@ contains
       end do
    end function solver_names
 
-   !> A new solver of kind `kind` (solver_*); `auto` is CHOLMOD.
+   !> A new solver of kind `kind` (solver_*); an unresolved `auto` is CHOLMOD.
    subroutine make_solver(kind, solver, error)
       integer, intent(in) :: kind
       class(linear_solver_t), allocatable, intent(out) :: solver

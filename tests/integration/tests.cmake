@@ -127,6 +127,12 @@ if(NOT VC_HAVE_PETSC)
   vc_deck_test(solver_gamg_without_petsc "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" 1
     "built without PETSc")
 endif()
+# --solver auto (the default) stays CHOLMOD on a small deck (below auto_gamg_unknowns,
+# src/solver/factory.f90): the solver that ran, read from the HDF5 root attribute
+add_test(NAME auto_solver_small
+  COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/check_solver_attribute.py" $<TARGET_FILE:vemcontact>
+          "${CMAKE_CURRENT_BINARY_DIR}/auto-solver-small" "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" cholmod)
+set_tests_properties(auto_solver_small PROPERTIES LABELS deck)
 add_test(NAME cli_unknown_solver COMMAND vemcontact --solver frobnicate x.inp)
 set_tests_properties(cli_unknown_solver PROPERTIES PASS_REGULAR_EXPRESSION "--solver takes auto, cholmod, gamg, hypre, mumps")
 
