@@ -32,10 +32,9 @@ program vemcontact_main
    type(job_lock_t) :: lock
    real(wp) :: tstart
    integer :: nremoved, iw, rank
-   logical :: solver_chosen, has_contact
+   logical :: solver_chosen
    character(len=:), allocatable :: job, note
    character(len=16) :: buf
-   character(len=120) :: why
 
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
@@ -102,41 +101,7 @@ program vemcontact_main
    do iw = 1, size(model%warnings)
       call log%say(model%warnings(iw)%s)
    end do
-   if (.not. solver_chosen .and. allocated(model%linear_solver)) then
-      cli%solver = solver_kind(model%linear_solver)
-      if (petsc_ranks() > 1 .and. .not. uses_petsc(cli%solver)) then
-         call fatal_error(error, 'error: SOLVER=CHOLMOD (*STATIC) runs on one process; under an MPI launcher '// &
-                          'with several processes use GAMG, HYPRE or MUMPS', err_input)
-         call fail(error)
-      end if
-      if (uses_petsc(cli%solver)) then
-         call petsc_initialize(cli%petsc_options, error)
-         if (allocated(error)) call fail(error)
-      end if
-   end if
-   ! `auto` by the number of unknowns and contact (vemcontact_solver_factory's auto_solver): a
-   ! one-process run starts PETSc only when that is gamg; without PETSc it stays cholmod
-   if (cli%solver == solver_auto) then
-      has_contact = .false.
-      if (allocated(model%pairs)) has_contact = size(model%pairs) > 0
-      cli%solver = auto_solver(2_i8*model%nnode, petsc_ranks(), has_contact)
-      if (petsc_ranks() > 1) then
-         why = 'several processes'
-      else if (has_contact) then
-         write (why, '(i0,a)') 2_i8*model%nnode, ' unknowns, contact pairs: a direct solver for the contact iteration'
-      else if (cli%solver == solver_gamg) then
-         write (why, '(i0,a,i0,a)') 2_i8*model%nnode, ' unknowns >= ', auto_gamg_unknowns, ' (measured crossover)'
-         call petsc_initialize(cli%petsc_options, error)
-         if (allocated(error)) then
-            deallocate (error)
-            cli%solver = solver_cholmod
-            why = trim(why)//', but built without PETSc (or it could not start)'
-         end if
-      else
-         write (why, '(i0,a,i0)') 2_i8*model%nnode, ' unknowns < ', auto_gamg_unknowns
-      end if
-      call log%say('  solver auto: '//trim(merge('gamg   ', 'cholmod', cli%solver == solver_gamg))//' ('//trim(why)//')')
-   end if
+   call choose_solver()
    ! reading ends with the choice of solver (and PETSc's start for it)
    call log%lap('read')
 
@@ -163,6 +128,52 @@ program vemcontact_main
    call exit_process(0)
 
 contains
+
+   !> The solver once the deck is read: --solver, else the deck's *STATIC, SOLVER=, else
+   !> `auto` (vemcontact_solver_factory's auto_solver: by unknowns, contact pairs and
+   !> processes, logged with the reason).  PETSc is started for a PETSc solver (under an
+   !> MPI launcher it already is); a gamg that auto chose falls back to cholmod when
+   !> PETSc cannot start (a build without it).
+   subroutine choose_solver()
+      logical :: auto, has_contact
+      integer(i8) :: unknowns
+      character(len=120) :: why
+      if (.not. solver_chosen .and. allocated(model%linear_solver)) then
+         cli%solver = solver_kind(model%linear_solver)
+         if (petsc_ranks() > 1 .and. .not. uses_petsc(cli%solver)) then
+            call fatal_error(error, 'error: SOLVER=CHOLMOD (*STATIC) runs on one process; under an MPI launcher '// &
+                             'with several processes use GAMG, HYPRE or MUMPS', err_input)
+            call fail(error)
+         end if
+      end if
+      auto = cli%solver == solver_auto
+      if (auto) then
+         has_contact = .false.
+         if (allocated(model%pairs)) has_contact = size(model%pairs) > 0
+         unknowns = 2_i8*model%nnode
+         cli%solver = auto_solver(unknowns, petsc_ranks(), has_contact)
+         if (petsc_ranks() > 1) then
+            why = 'several processes'
+         else if (has_contact) then
+            write (why, '(i0,a)') unknowns, ' unknowns, contact pairs: a direct solver for the contact iteration'
+         else if (cli%solver == solver_gamg) then
+            write (why, '(i0,a,i0,a)') unknowns, ' unknowns >= ', auto_gamg_unknowns, ' (measured crossover)'
+         else
+            write (why, '(i0,a,i0)') unknowns, ' unknowns < ', auto_gamg_unknowns
+         end if
+      end if
+      if (uses_petsc(cli%solver)) then
+         call petsc_initialize(cli%petsc_options, error)
+         if (allocated(error)) then
+            if (.not. auto) call fail(error)
+            deallocate (error)
+            cli%solver = solver_cholmod
+            why = trim(why)//', but built without PETSc (or it could not start)'
+         end if
+      end if
+      if (auto) call log%say('  solver auto: '//trim(merge('gamg   ', 'cholmod', cli%solver == solver_gamg))// &
+                             ' ('//trim(why)//')')
+   end subroutine choose_solver
 
    !> Report the error on stderr and in the log, then end with its status.
    subroutine fail(err)
