@@ -8,7 +8,7 @@
 program vemcontact_main
    use vemcontact_kinds, only: wp, i8
    use vemcontact_error, only: error_t, fatal_error, err_input
-   use vemcontact_model, only: model_t
+   use vemcontact_model, only: model_t, plane_strain
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
@@ -18,7 +18,7 @@ program vemcontact_main
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
    use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_cholmod, solver_kind, &
-      auto_solver, auto_gamg_unknowns
+      auto_solver, auto_gamg_unknowns, auto_gamg_poisson
    use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
    use vemcontact_output_phases, only: write_phases
    use vemcontact_app_blas_threads, only: set_blas_threads
@@ -137,6 +137,7 @@ contains
    subroutine choose_solver()
       logical :: auto, has_contact
       integer(i8) :: unknowns
+      real(wp) :: nu
       character(len=120) :: why
       if (.not. solver_chosen .and. allocated(model%linear_solver)) then
          cli%solver = solver_kind(model%linear_solver)
@@ -151,11 +152,15 @@ contains
          has_contact = .false.
          if (allocated(model%pairs)) has_contact = size(model%pairs) > 0
          unknowns = 2_i8*model%nnode
-         cli%solver = auto_solver(unknowns, petsc_ranks(), has_contact)
+         nu = plane_strain_poisson(model)
+         cli%solver = auto_solver(unknowns, petsc_ranks(), has_contact, nu)
          if (petsc_ranks() > 1) then
             why = 'several processes'
          else if (has_contact) then
             write (why, '(i0,a)') unknowns, ' unknowns, contact pairs: a direct solver for the contact iteration'
+         else if (unknowns >= auto_gamg_unknowns .and. nu > auto_gamg_poisson) then
+            write (why, '(i0,a,f6.4,a,f4.2,a)') unknowns, ' unknowns, plane strain with nu = ', nu, ' > ', &
+               auto_gamg_poisson, ': CG would need many iterations'
          else if (cli%solver == solver_gamg) then
             write (why, '(i0,a,i0,a)') unknowns, ' unknowns >= ', auto_gamg_unknowns, ' (measured crossover)'
          else
@@ -174,6 +179,18 @@ contains
       if (auto) call log%say('  solver auto: '//trim(merge('gamg   ', 'cholmod', cli%solver == solver_gamg))// &
                              ' ('//trim(why)//')')
    end subroutine choose_solver
+
+   !> The largest Poisson ratio of the materials of plane-strain elements (0 if none).
+   pure real(wp) function plane_strain_poisson(m) result(nu)
+      type(model_t), intent(in) :: m
+      integer :: e
+      nu = 0.0_wp
+      if (.not. allocated(m%elem_mat) .or. .not. allocated(m%elem_plane) .or. .not. allocated(m%materials)) return
+      do e = 1, m%nelem
+         if (m%elem_plane(e) /= plane_strain .or. m%elem_mat(e) < 1) cycle
+         nu = max(nu, m%materials(m%elem_mat(e))%poisson)
+      end do
+   end function plane_strain_poisson
 
    !> Report the error on stderr and in the log, then end with its status.
    subroutine fail(err)

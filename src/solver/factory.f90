@@ -1,7 +1,7 @@
 !> The linear solver backends by name: the names the command line takes and the
 !> `linear_solver_t` of a name.
 module vemcontact_solver_factory
-   use vemcontact_kinds, only: i8
+   use vemcontact_kinds, only: wp, i8
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_solver_linear_solver, only: linear_solver_t
    use vemcontact_solver_cholmod, only: cholmod_solver_t
@@ -20,6 +20,13 @@ module vemcontact_solver_factory
    !> Unknowns from which `auto` takes gamg on one process without contact: the measured
    !> crossover of end-to-end time on Lloyd-Voronoi meshes (docs/performance.md, "PETSc solvers").
    integer(i8), parameter, public :: auto_gamg_unknowns = 200000_i8
+   !> The largest plane-strain Poisson ratio for which `auto` takes gamg.  CG + GAMG's
+   !> iterations on the peers' 4e5-unknown Voronoi cantilever: 23 at nu = 0.3, 39 at
+   !> 0.45, 48 at 0.47, 58 at 0.48, 80 at 0.49, 646 at 0.4999 (50 s against CHOLMOD's
+   !> 7 s); at 0.48 the extra iterations cost what gamg saves over CHOLMOD at 4e5
+   !> unknowns (docs/performance.md, "PETSc solvers").  Plane stress has no
+   !> volumetric locking (its lambda is bounded by 2 mu) and is not limited.
+   real(wp), parameter, public :: auto_gamg_poisson = 0.48_wp
 
 contains
 
@@ -34,15 +41,19 @@ contains
    end function solver_kind
 
    !> The backend `auto` stands for with `unknowns` unknowns on `ranks` processes, for
-   !> a model with contact pairs if `contact`: gamg on several processes; on one, gamg
-   !> from auto_gamg_unknowns unknowns on for a model without contact, else cholmod (the
-   !> contact iteration's many solves per step cost a CG solve each: 11 times CHOLMOD's
-   !> time measured at 4e5 unknowns, docs/performance.md).
-   pure integer function auto_solver(unknowns, ranks, contact) result(k)
+   !> a model with contact pairs if `contact`, whose plane-strain materials have Poisson
+   !> ratios up to `poisson`: gamg on several processes; on one, gamg from
+   !> auto_gamg_unknowns unknowns on for a compressible model without contact, else
+   !> cholmod.  The contact iteration's many solves per step cost a CG solve each (11
+   !> times CHOLMOD's time measured at 4e5 unknowns), and CG's iterations grow as the
+   !> material nears incompressibility (see auto_gamg_poisson): CHOLMOD's cost does not.
+   pure integer function auto_solver(unknowns, ranks, contact, poisson) result(k)
       integer(i8), intent(in) :: unknowns
       integer, intent(in) :: ranks
       logical, intent(in) :: contact
-      if (ranks > 1 .or. (unknowns >= auto_gamg_unknowns .and. .not. contact)) then
+      real(wp), intent(in) :: poisson
+      if (ranks > 1 .or. (unknowns >= auto_gamg_unknowns .and. .not. contact .and. &
+                          poisson <= auto_gamg_poisson)) then
          k = solver_gamg
       else
          k = solver_cholmod
