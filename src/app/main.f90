@@ -19,7 +19,8 @@ program vemcontact_main
    use vemcontact_driver_static, only: run_options_t, run_static
    use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_cholmod, solver_kind, &
       auto_solver, auto_gamg_unknowns, auto_gamg_poisson
-   use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
+   use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_abort, petsc_ranks, petsc_rank, &
+      mpi_launched
    use vemcontact_output_phases, only: write_phases
    use vemcontact_app_blas_threads, only: set_blas_threads
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
@@ -33,6 +34,11 @@ program vemcontact_main
    real(wp) :: tstart
    integer :: nremoved, iw, rank
    logical :: solver_chosen
+   !> Whether an error now is met by every process alike (reading the deck and choosing
+   !> the solver: the same on all): then rank 0 reports it and all end normally; any
+   !> other error may be one process's alone (rank 0's lock, log and files, a failed
+   !> allocation, ...) and ends all of them (MPI_Abort).
+   logical :: collective_phase = .false.
    character(len=:), allocatable :: job, note
    character(len=16) :: buf
 
@@ -95,6 +101,7 @@ program vemcontact_main
    ! results folder, lock, removal of the previous results, log
    call log%lap('start')
 
+   collective_phase = .true.
    call read_deck(cli%deck, model, error)
    if (allocated(error)) call fail(error)
    ! valid input that is partly ignored (output variables vemcontact does not compute, ...)
@@ -105,6 +112,7 @@ program vemcontact_main
    ! reading ends with the choice of solver (and PETSc's start for it)
    call log%lap('read')
 
+   collective_phase = .false.
    opts%out_dir = cli%out_dir
    opts%job = job
    opts%ordering = cli%ordering
@@ -192,15 +200,26 @@ contains
       end do
    end function plane_strain_poisson
 
-   !> Report the error on stderr and in the log, then end with its status.
+   !> Report the error on stderr and in the log, then end with its status.  With
+   !> several MPI processes an error of the collective phase is reported by rank 0
+   !> alone; a later one by the process that met it, which then ends all of them.
    subroutine fail(err)
       type(error_t), intent(in) :: err
-      write (error_unit, '(a)') escape_controls(err%message)
+      integer :: r
+      r = petsc_rank()
+      if (r == 0) then
+         write (error_unit, '(a)') escape_controls(err%message)
+      else if (.not. collective_phase) then
+         write (buf, '(i0)') r
+         write (error_unit, '(a)') 'MPI rank '//trim(buf)//': '//escape_controls(err%message)
+      end if
       if (log%opened) then
          log%quiet = .true.
          call log%say(err%message)
          call log%close()
       end if
+      flush (error_unit)
+      if (.not. collective_phase .and. petsc_ranks() > 1) call petsc_abort(err%code)
       call petsc_finalize()
       call exit_process(err%code)
    end subroutine fail

@@ -35,7 +35,7 @@ module vemcontact_solver_petsc
    implicit none
    private
 
-   public :: petsc_solver_t, petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
+   public :: petsc_solver_t, petsc_initialize, petsc_finalize, petsc_abort, petsc_ranks, petsc_rank, mpi_launched
 
    !> The methods: CG + GAMG, CG + hypre BoomerAMG, MUMPS Cholesky (petsc_shim.c's kinds).
    integer, parameter, public :: petsc_gamg = 1, petsc_hypre = 2, petsc_mumps = 3
@@ -75,6 +75,11 @@ module vemcontact_solver_petsc
 
       subroutine vc_petsc_finalize() bind(c, name='vc_petsc_finalize')
       end subroutine vc_petsc_finalize
+
+      subroutine vc_petsc_abort(code) bind(c, name='vc_petsc_abort')
+         import :: c_int
+         integer(c_int), value :: code
+      end subroutine vc_petsc_abort
 
       integer(c_int) function vc_petsc_comm_size() bind(c, name='vc_petsc_comm_size')
          import :: c_int
@@ -156,6 +161,14 @@ contains
    subroutine petsc_finalize()
       call vc_petsc_finalize()
    end subroutine petsc_finalize
+
+   !> End all MPI processes of the run with status `code` (MPI_Abort): for an error
+   !> that one process meets while the others may wait for it in a collective
+   !> operation.  Returns only when MPI is not running.
+   subroutine petsc_abort(code)
+      integer, intent(in) :: code
+      call vc_petsc_abort(int(code, c_int))
+   end subroutine petsc_abort
 
    !> The number of MPI processes (1 while PETSc is not running).
    integer function petsc_ranks()

@@ -161,6 +161,17 @@ void vc_petsc_finalize(void)
     fesetenv(&env);
 }
 
+/* End every process of the run with status code: MPI_Abort, so that processes
+ * waiting for this one in a collective operation do not wait forever.  Returns
+ * only when MPI is not running. */
+void vc_petsc_abort(int code)
+{
+    PetscBool done_init = PETSC_FALSE, done_fin = PETSC_FALSE;
+    PetscInitialized(&done_init);
+    PetscFinalized(&done_fin);
+    if (done_init && !done_fin) MPI_Abort(PETSC_COMM_WORLD, code);
+}
+
 /* The number of MPI processes (1 before PETSc is initialized). */
 int vc_petsc_comm_size(void)
 {
@@ -557,6 +568,7 @@ int vc_petsc_initialize(const char *options)
     return VC_PETSC_NOT_BUILT;
 }
 void vc_petsc_finalize(void) {}
+void vc_petsc_abort(int code) { (void)code; }
 int vc_petsc_comm_size(void) { return 1; }
 int vc_petsc_comm_rank(void) { return 0; }
 int vc_petsc_create(void **handle, int kind)

@@ -122,6 +122,20 @@ else()
   set_tests_properties(petsc_solvers_np2 PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
 endif()
 set_tests_properties(petsc_solvers_np2 PROPERTIES LABELS deck)
+# an error on one process (rank 0 finds the job locked) ends all of them, with its status
+if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
+  add_test(NAME mpi_error_ends_all
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/mpi_error_ends_all.py"
+            "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/mpi-error-ends-all" "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp")
+  set_tests_properties(mpi_error_ends_all PROPERTIES
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 TIMEOUT 120)
+else()
+  add_test(NAME mpi_error_ends_all COMMAND ${CMAKE_COMMAND} -E echo
+    "skipped: needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
+  set_tests_properties(mpi_error_ends_all PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+endif()
+set_tests_properties(mpi_error_ends_all PROPERTIES LABELS deck)
 # without PETSc, --solver gamg stops with a clear message, exit status 1
 if(NOT VC_HAVE_PETSC)
   vc_deck_test(solver_gamg_without_petsc "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" 1
