@@ -7,7 +7,7 @@
 !> 4 solver failure, 5 internal error.
 program vemcontact_main
    use vemcontact_kinds, only: wp, i8
-   use vemcontact_error, only: error_t, fatal_error, err_input
+   use vemcontact_error, only: error_t, fatal_error, err_input, err_io
    use vemcontact_model, only: model_t
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
    use vemcontact_log, only: logger_t
@@ -19,7 +19,8 @@ program vemcontact_main
    use vemcontact_driver_static, only: run_options_t, run_static
    use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_cholmod, solver_kind, &
       auto_solver, auto_gamg_unknowns
-   use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched
+   use vemcontact_solver_petsc, only: petsc_initialize, petsc_finalize, petsc_ranks, petsc_rank, mpi_launched, &
+      petsc_abort
    use vemcontact_output_phases, only: write_phases
    use vemcontact_app_blas_threads, only: set_blas_threads
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
@@ -33,8 +34,9 @@ program vemcontact_main
    real(wp) :: tstart
    integer :: nremoved, iw, rank
    logical :: solver_chosen
+   !> while the deck is read: every process reads it, so its file errors are everyone's
+   logical :: reading = .false.
    character(len=:), allocatable :: job, note
-   character(len=16) :: buf
 
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
@@ -50,8 +52,8 @@ program vemcontact_main
    tstart = wall_time()
    ! PETSc and MPI only for a PETSc solver or under an MPI launcher: the default run
    ! never starts MPI.  With several processes every one runs the analysis (the
-   ! solves are distributed); rank 0 writes the results, the others write theirs
-   ! as JOB.rankN and remove them at the end.
+   ! element loop, the assembly and the solves are distributed); rank 0 alone
+   ! post-processes and writes: the others touch no file.
    rank = 0
    job = cli%job
    ! the command line's --solver wins over the deck's *STATIC, SOLVER=
@@ -67,21 +69,17 @@ program vemcontact_main
             call fail(error)
          end if
          rank = petsc_rank()
-         if (rank > 0) then
-            write (buf, '(i0)') rank
-            job = cli%job//'.rank'//trim(buf)
-         end if
       end if
    end if
-   call make_directory(cli%out_dir, error)
-   if (allocated(error)) call fail(error)
    if (rank == 0) then
+      call make_directory(cli%out_dir, error)
+      if (allocated(error)) call fail(error)
       ! held until the process ends
       call lock_job(cli%out_dir//'/'//job//'.lock', lock, error)
       if (allocated(error)) call fail(error)
+      call remove_job_files(cli%out_dir, job, nremoved, error)
+      if (allocated(error)) call fail(error)
    end if
-   call remove_job_files(cli%out_dir, job, nremoved, error)
-   if (allocated(error)) call fail(error)
    log%quiet = cli%quiet .or. rank > 0
    if (rank == 0) then
       call log%open(cli%out_dir//'/'//job//'.log', error)
@@ -95,8 +93,10 @@ program vemcontact_main
    ! results folder, lock, removal of the previous results, log
    call log%lap('start')
 
+   reading = .true.
    call read_deck(cli%deck, model, error)
    if (allocated(error)) call fail(error)
+   reading = .false.
    ! valid input that is partly ignored (output variables vemcontact does not compute, ...)
    do iw = 1, size(model%warnings)
       call log%say(model%warnings(iw)%s)
@@ -111,17 +111,16 @@ program vemcontact_main
    opts%solver = cli%solver
    opts%write_matrix = cli%write_matrix
    opts%compress_vtu = cli%compress_vtu
+   opts%write_files = rank == 0
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)
    ! HDF5 file closed, factor, matrices and result arrays released (run_static's return)
    call log%lap('finish')
    call log%phase('total', wall_time() - tstart)
-   call write_phases(cli%out_dir//'/'//job//'_phases.csv', log, error)
-   if (allocated(error)) call fail(error)
-   call log%close(error)
-   if (allocated(error)) call fail(error)
-   if (rank > 0) then
-      call remove_job_files(cli%out_dir, job, nremoved, error)
+   if (rank == 0) then
+      call write_phases(cli%out_dir//'/'//job//'_phases.csv', log, error)
+      if (allocated(error)) call fail(error)
+      call log%close(error)
       if (allocated(error)) call fail(error)
    end if
    call petsc_finalize()
@@ -175,7 +174,11 @@ contains
                              ' ('//trim(why)//')')
    end subroutine choose_solver
 
-   !> Report the error on stderr and in the log, then end with its status.
+   !> Report the error on stderr and in the log, then end with its status.  With
+   !> several MPI processes every one meets the same errors, as they run the same
+   !> analysis, except those of the files only rank 0 writes (err_io outside the deck
+   !> reading): such an error ends all processes (MPI_Abort), the others being
+   !> possibly held in the solver waiting for rank 0.
    subroutine fail(err)
       type(error_t), intent(in) :: err
       write (error_unit, '(a)') escape_controls(err%message)
@@ -184,6 +187,7 @@ contains
          call log%say(err%message)
          call log%close()
       end if
+      if (petsc_ranks() > 1 .and. err%code == err_io .and. .not. reading) call petsc_abort(err%code)
       call petsc_finalize()
       call exit_process(err%code)
    end subroutine fail
