@@ -10,6 +10,7 @@ module vemcontact_driver_static
                                element_order, etype_polygon2, &
                                pair_surface_to_surface
    use vemcontact_sparse_mmio, only: write_matrix_market
+   use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_validate, only: element_warnings
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
@@ -82,6 +83,7 @@ contains
       integer, intent(inout) :: current, done
       type(error_t), allocatable, intent(out) :: error
       type(linear_system_t) :: sys
+      type(sym_csc_t) :: kwhole
       type(load_state_t) :: st
       type(contact_state_t) :: contact
       type(contact_table_t) :: tab
@@ -230,8 +232,17 @@ contains
          if (contact%n > 0) call log%phase('search', sys%t_search)
          ! the rest of solve_state: load vector, constraints, the contact iteration's own work
          call log%lap('system')
-         if (opts%write_matrix .and. istep == 1 .and. opts%write_files) then
-            call write_matrix_market(base//'.mtx', sys%kb, error)
+         if (opts%write_matrix .and. istep == 1) then
+            if (sys%dist) then
+               ! the whole matrix: the sum of the processes' shares, on every process
+               kwhole = sys%kb
+               call sys%solver%sum_over_ranks(kwhole%val, error)
+               if (allocated(error)) return
+               if (opts%write_files) call write_matrix_market(base//'.mtx', kwhole, error)
+               deallocate (kwhole%val)
+            else if (opts%write_files) then
+               call write_matrix_market(base//'.mtx', sys%kb, error)
+            end if
             if (allocated(error)) return
             call log%lap('write matrix')
          end if
