@@ -56,8 +56,8 @@ program vemcontact_main
    tstart = wall_time()
    ! PETSc and MPI only for a PETSc solver or under an MPI launcher: the default run
    ! never starts MPI.  With several processes every one runs the analysis (the
-   ! solves are distributed); rank 0 writes the results, the others write theirs
-   ! as JOB.rankN and remove them at the end.
+   ! element loop, the assembly and the solves are distributed); rank 0 alone
+   ! post-processes and writes: the others touch no file.
    rank = 0
    job = cli%job
    ! the command line's --solver wins over the deck's *STATIC, SOLVER=
@@ -73,21 +73,17 @@ program vemcontact_main
             call fail(error)
          end if
          rank = petsc_rank()
-         if (rank > 0) then
-            write (buf, '(i0)') rank
-            job = cli%job//'.rank'//trim(buf)
-         end if
       end if
    end if
-   call make_directory(cli%out_dir, error)
-   if (allocated(error)) call fail(error)
    if (rank == 0) then
+      call make_directory(cli%out_dir, error)
+      if (allocated(error)) call fail(error)
       ! held until the process ends
       call lock_job(cli%out_dir//'/'//job//'.lock', lock, error)
       if (allocated(error)) call fail(error)
+      call remove_job_files(cli%out_dir, job, nremoved, error)
+      if (allocated(error)) call fail(error)
    end if
-   call remove_job_files(cli%out_dir, job, nremoved, error)
-   if (allocated(error)) call fail(error)
    log%quiet = cli%quiet .or. rank > 0
    if (rank == 0) then
       call log%open(cli%out_dir//'/'//job//'.log', error)
@@ -119,17 +115,16 @@ program vemcontact_main
    opts%solver = cli%solver
    opts%write_matrix = cli%write_matrix
    opts%compress_vtu = cli%compress_vtu
+   opts%write_files = rank == 0
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)
    ! HDF5 file closed, factor, matrices and result arrays released (run_static's return)
    call log%lap('finish')
    call log%phase('total', wall_time() - tstart)
-   call write_phases(cli%out_dir//'/'//job//'_phases.csv', log, error)
-   if (allocated(error)) call fail(error)
-   call log%close(error)
-   if (allocated(error)) call fail(error)
-   if (rank > 0) then
-      call remove_job_files(cli%out_dir, job, nremoved, error)
+   if (rank == 0) then
+      call write_phases(cli%out_dir//'/'//job//'_phases.csv', log, error)
+      if (allocated(error)) call fail(error)
+      call log%close(error)
       if (allocated(error)) call fail(error)
    end if
    call petsc_finalize()

@@ -544,17 +544,24 @@ contains
 
    !> Add k A^T n n^T A of the active springs to `a`; `ok` false when a spring
    !> couples nodes the pattern does not hold (the caller rebuilds the pattern).
-   subroutine add_stiffness(self, a, ok)
+   subroutine add_stiffness(self, a, ok, values)
       class(contact_state_t), intent(in) :: self
       type(sym_csc_t), intent(inout) :: a
       logical, intent(out) :: ok
+      !> .false.: only whether the springs are inside the pattern (`a` unchanged: a
+      !> process whose share of the matrix does not hold them); default .true.
+      logical, intent(in), optional :: values
+      real(wp) :: scale
       integer :: i
       ok = .true.
+      scale = 1.0_wp
+      if (present(values)) scale = merge(1.0_wp, 0.0_wp, values)
       do i = 1, self%n
          if (.not. self%active(i)) cycle
-         ! closed springs carry their stiffness even at g = 0 exactly (initial touching)
+         ! closed springs carry their stiffness even at g = 0 exactly (initial touching);
+         ! adding exact zeros leaves a share as it was
          call add_element_matrix(a, nodes_of(self, i), &
-                                 contact_stiffness(self%xi(i), self%normal(:, i), self%k(i), -1.0_wp), ok)
+                                 scale*contact_stiffness(self%xi(i), self%normal(:, i), self%k(i), -1.0_wp), ok)
          if (.not. ok) return
       end do
    end subroutine add_stiffness

@@ -25,10 +25,12 @@ contains
    end function max_element_nodes
 
    !> Assemble the stiffness matrix into `a` (pattern already built, values overwritten).
-   subroutine assemble_stiffness(model, a, error)
+   !> With `mine`, only the elements e with mine(e) (this process's share of the matrix).
+   subroutine assemble_stiffness(model, a, error, mine)
       type(model_t), intent(in) :: model
       type(sym_csc_t), intent(inout) :: a
       type(error_t), allocatable, intent(out) :: error
+      logical, intent(in), optional :: mine(:)
       real(wp), allocatable :: xy(:, :), ke(:, :), work(:)
       real(wp) :: d(3, 3)
       integer :: nmax, n, info, e, nerr
@@ -40,6 +42,9 @@ contains
       a%val = 0.0_wp
       nerr = 0
       do e = 1, model%nelem
+         if (present(mine)) then
+            if (.not. mine(e)) cycle
+         end if
          first = model%elem_ptr(e)
          n = model%elem_ptr(e + 1) - first
          xy(:, :n) = model%x(:, model%elem_conn(first:first + n - 1))

@@ -10,7 +10,7 @@ module vemcontact_driver_dirichlet
    implicit none
    private
 
-   public :: apply_dirichlet, constrain_rhs, constrain_matrix
+   public :: apply_dirichlet, constrain_rhs, constrain_matrix, dirichlet_moves, constrain_share, kept_diagonal
 
 contains
 
@@ -30,6 +30,21 @@ contains
       logical, intent(in) :: fixed(:)
       real(wp), intent(in) :: value(:)
       real(wp), intent(inout) :: f(:)
+      integer(ip) :: j
+      call dirichlet_moves(a, fixed, value, f)
+      do j = 1, a%n
+         if (fixed(j)) f(j) = kept_diagonal(a%val(a%col_ptr(j + 1) - 1))*value(j)
+      end do
+   end subroutine constrain_rhs
+
+   !> The known values moved to the free rows: f(i) = f(i) - a(i, j) value(j) for
+   !> free i and fixed j.  Linear in `a`: the moves of the shares of a matrix add up
+   !> to those of the matrix.
+   pure subroutine dirichlet_moves(a, fixed, value, f)
+      type(sym_csc_t), intent(in) :: a
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: value(:)
+      real(wp), intent(inout) :: f(:)
       integer(ip) :: j, i
       integer(i8) :: k
       do j = 1, a%n
@@ -42,10 +57,27 @@ contains
             end if
          end do
       end do
+   end subroutine dirichlet_moves
+
+   !> constrain_matrix for one process's share `a` of a matrix (the matrix is the sum
+   !> of the shares): the couplings of fixed dofs zeroed; the fixed diagonal, the
+   !> kept diagonal of the whole matrix's `diag` (its diagonal at the fixed dofs), is
+   !> held by the share with `owner` only and zero in the others.
+   pure subroutine constrain_share(a, fixed, diag, owner)
+      type(sym_csc_t), intent(inout) :: a
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: diag(:)
+      logical, intent(in) :: owner
+      integer(ip) :: j
+      integer(i8) :: k
       do j = 1, a%n
-         if (fixed(j)) f(j) = kept_diagonal(a%val(a%col_ptr(j + 1) - 1))*value(j)
+         do k = a%col_ptr(j), a%col_ptr(j + 1) - 2
+            if (fixed(j) .or. fixed(a%row_idx(k))) a%val(k) = 0.0_wp
+         end do
+         k = a%col_ptr(j + 1) - 1
+         if (fixed(j)) a%val(k) = merge(kept_diagonal(diag(j)), 0.0_wp, owner)
       end do
-   end subroutine constrain_rhs
+   end subroutine constrain_share
 
    !> Zero the couplings of fixed dofs; their diagonal stays (1 where it is not positive).
    pure subroutine constrain_matrix(a, fixed)
@@ -62,6 +94,7 @@ contains
       end do
    end subroutine constrain_matrix
 
+   !> The diagonal a fixed dof keeps: its own, 1 where that is not positive.
    pure real(wp) function kept_diagonal(d)
       real(wp), intent(in) :: d
       kept_diagonal = d

@@ -7,6 +7,15 @@
 !> With contact, the contact iteration (vemcontact_contact_iteration) adds its
 !> springs to the same pattern through the contact_system_t operations below and
 !> reuses the analysis.
+!>
+!> Distributed (a solver on several MPI processes): the mesh is partitioned
+!> (vemcontact_driver_partition), each process assembles only its own elements, so
+!> `k` and `kb` hold its share of the matrix (the matrix is the sum of the shares),
+!> and the solver adds the shares.  Everything else stays whole and the same on every
+!> process: the load vector, the solution, the right-hand side (the moves of the
+!> prescribed values are linear in the matrix and summed over the processes), the
+!> diagonal of the fixed dofs (summed; held by rank 0's share only), the contact
+!> springs (in rank 0's share), K u (summed).
 module vemcontact_driver_linear
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_solver
@@ -22,7 +31,9 @@ module vemcontact_driver_linear
    use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes
    use vemcontact_driver_load_state, only: load_state_t
    use vemcontact_driver_assembly, only: assemble_stiffness, assemble_loads
-   use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_rhs, constrain_matrix
+   use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_rhs, constrain_matrix, dirichlet_moves, &
+      constrain_share, kept_diagonal
+   use vemcontact_driver_partition, only: partition_t, partition_mesh
    use vemcontact_clock, only: wall_time
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_contact_iteration, only: contact_system_t, solve_contact, judge_conditioning
@@ -30,6 +41,7 @@ module vemcontact_driver_linear
    use vemcontact_contact_search, only: merge_node_pairs
    use vemcontact_sparse_matvec, only: sym_matvec
    use vemcontact_log, only: logger_t
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    implicit none
    private
 
@@ -56,8 +68,16 @@ module vemcontact_driver_linear
       real(wp) :: t_validate = 0, t_pattern = 0, t_assemble = 0, t_analyze = 0
       !> of t_pattern, the search for the candidate node pairs of the pattern
       real(wp) :: t_candidates = 0
+      !> of t_pattern, the partition of the mesh (distributed)
+      real(wp) :: t_partition = 0
       integer :: ordering = 0
       integer :: pattern_builds = 0
+      !> distributed: this process holds its share of `k` and `kb` (see the module)
+      logical :: dist = .false.
+      !> distributed: the partition of the mesh over the processes
+      type(partition_t) :: partition
+      !> distributed: the diagonal of the whole stiffness (summed over the processes)
+      real(wp), allocatable :: kdiag(:)
    contains
       procedure :: setup
       procedure :: solve_state
@@ -68,6 +88,7 @@ module vemcontact_driver_linear
       procedure :: solve_system
       procedure :: elastic_times
       procedure :: largest_elastic_diagonal
+      procedure, private :: constrain_distributed
    end type linear_system_t
 
 contains
@@ -105,6 +126,8 @@ contains
       end if
       call make_solver(kind, self%solver, error)
       if (allocated(error)) return
+      self%dist = self%solver%processes() > 1
+      self%solver%shares = self%dist
       allocate (u0(2*model%nnode), source=0.0_wp)
       call self%build_system(model, error, contact, u0)
    end subroutine setup
@@ -119,12 +142,23 @@ contains
       real(wp), intent(in) :: u(:)
       integer(i8), allocatable :: adj_ptr(:), ptr2(:)
       integer(ip), allocatable :: adj(:), adj2(:), perm(:), extra(:, :)
-      real(wp) :: t0, t1
+      real(wp) :: t0, t1, failed(1)
+      type(error_t), allocatable :: err2
+      integer(ip) :: j
 
       t0 = wall_time()
       self%t_candidates = 0
       call node_graph_from_elements(model%nnode, model%elem_ptr, model%elem_conn, adj_ptr, adj, error)
       if (allocated(error)) return
+      if (self%dist .and. self%partition%nparts == 0) then
+         ! once, from the elements' graph: it holds when contact pairs rebuild the pattern
+         t1 = wall_time()
+         call partition_mesh(model%nnode, model%elem_ptr, model%elem_conn, adj_ptr, adj, &
+                             self%solver%processes(), self%partition, error)
+         if (allocated(error)) return
+         self%solver%owned_dofs = 2*self%partition%nodes(self%solver%process() + 1)
+         self%t_partition = wall_time() - t1
+      end if
       if (present(contact)) then
          if (contact%n > 0) then
             t1 = wall_time()
@@ -142,13 +176,36 @@ contains
       self%t_pattern = wall_time() - t0
 
       t0 = wall_time()
-      call assemble_stiffness(model, self%k, error)
+      if (self%dist) then
+         call assemble_stiffness(model, self%k, error, self%partition%elem_part == self%solver%process())
+         ! an element that fails fails on one process: all stop, with the messages of all
+         ! elements (assembled again on every process, only on this path)
+         failed = merge(1.0_wp, 0.0_wp, allocated(error))
+         call self%solver%sum_over_ranks(failed, err2)
+         if (allocated(err2)) then
+            call move_alloc(err2, error)
+            return
+         end if
+         if (failed(1) > 0.0_wp) then
+            call assemble_stiffness(model, self%k, error)
+            if (.not. allocated(error)) call fatal_error(error, 'internal error: an element failed on one '// &
+                                                         'process only', err_solver)
+            return
+         end if
+         self%kdiag = [(self%k%val(self%k%col_ptr(j + 1) - 1), j=1, self%k%n)]
+         call self%solver%sum_over_ranks(self%kdiag, error)
+      else
+         call assemble_stiffness(model, self%k, error)
+      end if
       if (allocated(error)) return
       self%t_assemble = wall_time() - t0
 
       t0 = wall_time()
       call self%solver%release()
-      if (self%solver%takes_ordering .and. (self%ordering == ordering_metis .or. &
+      if (self%dist) then
+         ! each process's rows contiguous: the nodes part by part
+         call self%solver%analyze(self%k, error, self%partition%perm, model%x)
+      else if (self%solver%takes_ordering .and. (self%ordering == ordering_metis .or. &
           (self%ordering == ordering_auto .and. model%nnode >= metis_threshold))) then
          allocate (perm(2*model%nnode))
          call nodal_metis_ordering(model%nnode, adj_ptr, adj, perm, error)
@@ -203,7 +260,12 @@ contains
          call check_supports(model, self%part, self%nparts, fixed, error)
          if (allocated(error)) return
          call copy_values(self%k, self%kb)
-         call apply_dirichlet(self%kb, fixed, st%prescribed, f)
+         if (self%dist) then
+            call self%constrain_distributed(self%kb, self%kdiag, fixed, st%prescribed, f, .true., error)
+            if (allocated(error)) return
+         else
+            call apply_dirichlet(self%kb, fixed, st%prescribed, f)
+         end if
          t0 = wall_time()
          call self%solver%factorize(self%kb, error)
          if (allocated(error)) return
@@ -218,7 +280,12 @@ contains
       else
          ! same constraints: only the right-hand side changes (kb is already reduced,
          ! so the known values are moved with the unreduced stiffness)
-         call constrain_rhs(self%k, fixed, st%prescribed, f)
+         if (self%dist) then
+            call self%constrain_distributed(self%k, self%kdiag, fixed, st%prescribed, f, .false., error)
+            if (allocated(error)) return
+         else
+            call constrain_rhs(self%k, fixed, st%prescribed, f)
+         end if
       end if
       t0 = wall_time()
       call self%solver%solve(f, u, error)
@@ -242,17 +309,21 @@ contains
       real(wp), intent(out) :: f(:)
       logical, intent(out) :: rebuilt
       type(error_t), allocatable, intent(out) :: error
-      logical :: ok
+      logical :: ok, owner
+      real(wp), allocatable :: d(:)
+      integer(ip) :: j
       rebuilt = .false.
+      ! distributed: the springs in rank 0's share (the others only check the pattern)
+      owner = self%solver%process() == 0
       call copy_values(self%k, self%kb)
-      call contact%add_stiffness(self%kb, ok)
+      call contact%add_stiffness(self%kb, ok, owner)
       if (.not. ok) then
          ! the pairing left the candidate pairs of the pattern: new pattern and analysis
          call self%build_system(model, error, contact, u)
          if (allocated(error)) return
          rebuilt = .true.
          call copy_values(self%k, self%kb)
-         call contact%add_stiffness(self%kb, ok)
+         call contact%add_stiffness(self%kb, ok, owner)
          if (.not. ok) then
             call fatal_error(error, 'internal error: contact spring outside the rebuilt pattern', err_solver)
             return
@@ -262,9 +333,43 @@ contains
       call contact%add_rhs(f)
       call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part))
       if (allocated(error)) return
+      if (self%dist) then
+         ! the whole diagonal of K + the springs at the fixed dofs
+         d = pack([(self%kb%val(self%kb%col_ptr(j + 1) - 1), j=1, self%kb%n)], fixed)
+         call self%solver%sum_over_ranks(d, error)
+         if (allocated(error)) return
+         call self%constrain_distributed(self%kb, unpack(d, fixed, 0.0_wp), fixed, prescribed, f, .true., error)
+         return
+      end if
       call constrain_rhs(self%kb, fixed, prescribed, f)
       call constrain_matrix(self%kb, fixed)
    end subroutine contact_matrix
+
+   !> Distributed: the whole right-hand side f (whole loads on entry) of the prescribed
+   !> `value`s at the `fixed` dofs from this process's share `a`, and with `matrix` the
+   !> share constrained; `diag`: the whole matrix's diagonal (read at the fixed dofs).
+   subroutine constrain_distributed(self, a, diag, fixed, value, f, matrix, error)
+      class(linear_system_t), intent(in) :: self
+      type(sym_csc_t), intent(inout) :: a
+      real(wp), intent(in) :: diag(:), value(:)
+      logical, intent(in) :: fixed(:), matrix
+      real(wp), intent(inout) :: f(:)
+      type(error_t), allocatable, intent(out) :: error
+      real(wp), allocatable :: g(:)
+      integer(ip) :: j
+      allocate (g(size(f)), source=0.0_wp)
+      call dirichlet_moves(a, fixed, value, g)
+      call self%solver%sum_over_ranks(g, error)
+      if (allocated(error)) return
+      do j = 1, a%n
+         if (fixed(j)) then
+            f(j) = kept_diagonal(diag(j))*value(j)
+         else
+            f(j) = f(j) + g(j)
+         end if
+      end do
+      if (matrix) call constrain_share(a, fixed, diag, self%solver%process() == 0)
+   end subroutine constrain_distributed
 
    subroutine numeric_factorize(self, error)
       class(linear_system_t), intent(inout) :: self
@@ -289,13 +394,23 @@ contains
       class(linear_system_t), intent(in) :: self
       real(wp), intent(in) :: u(:)
       real(wp), intent(out) :: ku(:)
+      type(error_t), allocatable :: error
       call sym_matvec(self%k, u, ku)
+      if (.not. self%dist) return
+      call self%solver%sum_over_ranks(ku, error)
+      ! not reached: MPI's own errors end the run (MPI_ERRORS_ARE_FATAL, the default);
+      ! should one return, K u is marked not finite rather than left a share
+      if (allocated(error)) ku = ieee_value(1.0_wp, ieee_quiet_nan)
    end subroutine elastic_times
 
    real(wp) function largest_elastic_diagonal(self) result(kmax)
       class(linear_system_t), intent(in) :: self
       integer(ip) :: j
       kmax = 0.0_wp
+      if (self%dist) then
+         if (self%k%n > 0) kmax = maxval(abs(self%kdiag))
+         return
+      end if
       do j = 1, self%k%n
          kmax = max(kmax, abs(self%k%val(self%k%col_ptr(j + 1) - 1)))
       end do

@@ -10,6 +10,7 @@ module vemcontact_driver_static
                                element_order, etype_polygon2, &
                                pair_surface_to_surface
    use vemcontact_sparse_mmio, only: write_matrix_market
+   use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_validate, only: element_warnings
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
@@ -40,6 +41,9 @@ module vemcontact_driver_static
       integer :: solver = 0                   !< vemcontact_solver_factory's solver_* (0: auto)
       logical :: write_matrix = .false.
       logical :: compress_vtu = .true.        !< zlib-compressed .vtu arrays
+      !> .false.: a process of a distributed run other than rank 0, which solves with
+      !> the others but writes nothing and skips the post-processing
+      logical :: write_files = .true.
    end type run_options_t
 
 contains
@@ -79,6 +83,7 @@ contains
       integer, intent(inout) :: current, done
       type(error_t), allocatable, intent(out) :: error
       type(linear_system_t) :: sys
+      type(sym_csc_t) :: kwhole
       type(load_state_t) :: st
       type(contact_state_t) :: contact
       type(contact_table_t) :: tab
@@ -158,25 +163,43 @@ contains
       call log%phase('pattern', sys%t_pattern)
       ! of which the contact search for the candidate pairs of the pattern
       if (contact%n > 0) call log%phase('candidates', sys%t_candidates, within='pattern')
+      ! of which the partition of the mesh over the processes (distributed)
+      if (sys%dist) call log%phase('partition', sys%t_partition, within='pattern')
       call log%phase('assemble', sys%t_assemble)
       call log%phase('analyze', sys%t_analyze)
       ! contact surfaces and pairs, parts, unused nodes, element warnings
       call log%lap('set-up')
 
       base = opts%out_dir//'/'//opts%job
-      call h5%open(base//'.h5', error, solver=sys%solver%describe())
-      if (allocated(error)) return
-      call h5%write_mesh(model, error)
-      if (allocated(error)) then
-         call h5%discard()
-         return
+      if (opts%write_files) then
+         if (sys%dist) then
+            call h5%open(base//'.h5', error, solver=sys%solver%describe(), partition=sys%partition%elements)
+         else
+            call h5%open(base//'.h5', error, solver=sys%solver%describe(), partition=[model%nelem])
+         end if
+         if (allocated(error)) return
+         call h5%write_mesh(model, error)
+         if (allocated(error)) then
+            call h5%discard()
+            return
+         end if
+         extra%elem_set = element_section_sets(model)
+         extra%elem_part = element_parts(model, sys%part)
+         call h5%write_labels(model, extra%elem_set, extra%elem_part, error)
+         if (allocated(error)) then
+            call h5%discard()
+            return
+         end if
       end if
-      extra%elem_set = element_section_sets(model)
-      extra%elem_part = element_parts(model, sys%part)
-      call h5%write_labels(model, extra%elem_set, extra%elem_part, error)
-      if (allocated(error)) then
-         call h5%discard()
-         return
+      if (sys%dist) then
+         write (buf, '(2x,a,i0,a)') 'distributed over ', sys%partition%nparts, ' processes (METIS partition '// &
+            'of the nodes): elements per process'
+         name = trim(buf)
+         do iw = 1, sys%partition%nparts
+            write (buf, '(i0)') sys%partition%elements(iw)
+            name = name//' '//trim(buf)
+         end do
+         call log%say(name)
       end if
 
       call init_load_state(model, st)
@@ -210,7 +233,16 @@ contains
          ! the rest of solve_state: load vector, constraints, the contact iteration's own work
          call log%lap('system')
          if (opts%write_matrix .and. istep == 1) then
-            call write_matrix_market(base//'.mtx', sys%kb, error)
+            if (sys%dist) then
+               ! the whole matrix: the sum of the processes' shares, on every process
+               kwhole = sys%kb
+               call sys%solver%sum_over_ranks(kwhole%val, error)
+               if (allocated(error)) return
+               if (opts%write_files) call write_matrix_market(base//'.mtx', kwhole, error)
+               deallocate (kwhole%val)
+            else if (opts%write_files) then
+               call write_matrix_market(base//'.mtx', sys%kb, error)
+            end if
             if (allocated(error)) return
             call log%lap('write matrix')
          end if
@@ -221,6 +253,13 @@ contains
                          'its stresses are kept')
          end if
          u_out = u - u_ref
+         ! K u for the reactions: every process together (distributed, the shares are added)
+         call sys%elastic_times(u, ku)
+         if (.not. opts%write_files) then
+            ! the post-processing and the output are rank 0's
+            done = istep
+            cycle
+         end if
 
          ! second-order elements give their own stress and strain at each node
          ! (linear for the k = 2 VEM), averaged at the nodes instead of the
@@ -248,7 +287,6 @@ contains
          call log%lap('estimate')
          call say_estimate(est)
          ! reactions: K u - f_ext at the constrained dofs, with the loads in force
-         call sys%elastic_times(u, ku)
          call assemble_loads(model, st%force, st%dload, f)
          call reaction_forces(ku, f, st%fixed, extra%rf)
          rf_sets = constrained_sets(model, st%fixed)
@@ -331,8 +369,10 @@ contains
          if (allocated(error)) return
       end do
       log%step = 0
-      call h5%close(error, complete=.true.)
-      if (allocated(error)) return
+      if (opts%write_files) then
+         call h5%close(error, complete=.true.)
+         if (allocated(error)) return
+      end if
       call sys%solver%release()
       call log%say('results')
       call log%say('  '//base//'.pvd')

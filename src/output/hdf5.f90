@@ -68,13 +68,15 @@ module vemcontact_output_hdf5
 contains
 
    !> Start the file `path` (as a new temporary beside it), write the root
-   !> attributes (with `solver`: the linear solver that ran, root attribute `solver`)
-   !> and /steps.
-   subroutine h5_open(self, path, error, solver)
+   !> attributes (with `solver`: the linear solver that ran, root attribute `solver`;
+   !> with `partition`: the elements each MPI process assembled, root attributes
+   !> `processes` and `elements_per_process`) and /steps.
+   subroutine h5_open(self, path, error, solver, partition)
       class(h5_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path
       type(error_t), allocatable, intent(out) :: error
       character(len=*), intent(in), optional :: solver
+      integer(ip), intent(in), optional :: partition(:)
       integer :: hdferr
       integer(hid_t) :: grp
 
@@ -102,6 +104,12 @@ contains
       if (allocated(error)) return
       if (present(solver)) then
          call put_string_attribute(self, self%file, 'solver', solver, error)
+         if (allocated(error)) return
+      end if
+      if (present(partition)) then
+         call put_int_attribute(self, self%file, 'processes', int(size(partition), ip), error)
+         if (allocated(error)) return
+         call put_int_array_attribute(self, self%file, 'elements_per_process', partition, error)
          if (allocated(error)) return
       end if
       call h5gcreate_f(self%file, 'steps', grp, hdferr)
@@ -760,6 +768,42 @@ contains
       call put_attribute(self, loc, name, H5T_STD_I32LE, h5kind_to_type(ip, H5_INTEGER_KIND), &
                          c_loc(buf), error)
    end subroutine put_int_attribute
+
+   !> One-dimensional 32-bit integer attribute `name` of `loc` holding `values`.
+   subroutine put_int_array_attribute(self, loc, name, values, error)
+      class(h5_writer_t), intent(in) :: self
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer(ip), intent(in) :: values(:)
+      type(error_t), allocatable, intent(inout) :: error
+      integer(ip), allocatable, target :: buf(:)
+      integer(hid_t) :: space, attr
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr, ignore
+      buf = values
+      if (size(buf) == 0) buf = [0_ip]
+      dims = size(values, kind=hsize_t)
+      call h5screate_simple_f(1, max(dims, 1_hsize_t), space, hdferr)
+      if (failed(self, hdferr, 'creating the dataspace of attribute '//name, error)) return
+      call h5acreate_f(loc, name, H5T_STD_I32LE, space, attr, hdferr)
+      if (failed(self, hdferr, 'creating attribute '//name, error)) then
+         call h5sclose_f(space, ignore)
+         return
+      end if
+      call h5awrite_f(attr, h5kind_to_type(ip, H5_INTEGER_KIND), c_loc(buf), hdferr)
+      if (failed(self, hdferr, 'writing attribute '//name, error)) then
+         call h5aclose_f(attr, ignore)
+         call h5sclose_f(space, ignore)
+         return
+      end if
+      call h5aclose_f(attr, hdferr)
+      if (failed(self, hdferr, 'closing attribute '//name, error)) then
+         call h5sclose_f(space, ignore)
+         return
+      end if
+      call h5sclose_f(space, hdferr)
+      if (failed(self, hdferr, 'closing the dataspace of attribute '//name, error)) return
+   end subroutine put_int_array_attribute
 
    !> Fixed-length, null-padded ASCII string attribute of exactly len(value)
    !> characters (h5py returns it as `bytes`).  An empty value is stored as one

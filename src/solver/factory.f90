@@ -5,7 +5,7 @@ module vemcontact_solver_factory
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_solver_linear_solver, only: linear_solver_t
    use vemcontact_solver_cholmod, only: cholmod_solver_t
-   use vemcontact_solver_petsc, only: petsc_solver_t, petsc_gamg, petsc_hypre, petsc_mumps, petsc_ranks
+   use vemcontact_solver_petsc, only: petsc_solver_t, petsc_gamg, petsc_hypre, petsc_mumps
    implicit none
    private
 
@@ -84,8 +84,9 @@ contains
          type is (petsc_solver_t)
             solver%method = merge(petsc_gamg, merge(petsc_hypre, petsc_mumps, kind == solver_hypre), &
                                   kind == solver_gamg)
-            ! the ordering distributes the rows over several MPI processes
-            solver%takes_ordering = petsc_ranks() > 1
+            ! PETSc's solvers order for themselves; with several MPI processes the
+            ! driver's partition of the mesh distributes the rows
+            solver%takes_ordering = .false.
          end select
       case default
          call fatal_error(error, 'error: unknown linear solver (known: '//solver_names()//')', err_input)

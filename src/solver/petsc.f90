@@ -10,8 +10,10 @@
 !> for example `-ksp_rtol 1e-12` or `-pc_gamg_threshold 0.02`.
 !>
 !> Under MPI every process runs the driver with the same data and calls these
-!> procedures together; the matrix and the solve are distributed by rows (the
-!> assembly is not: every process assembles the whole matrix in this version).
+!> procedures together; the matrix and the solve are distributed by rows.  With
+!> `owned_dofs` set, each process owns that many rows (the driver's partition of
+!> the mesh); with `shares`, each passes its share of the matrix (the driver
+!> assembles only its own elements) and PETSc adds the shares.
 !>
 !> Stopping rule of CG: the true (unpreconditioned) residual |b - A x|_2 <=
 !> rtol |b|_2 with rtol = 1e-10 (`default_rtol`).  The relative error of x is
@@ -64,6 +66,9 @@ module vemcontact_solver_petsc
       procedure :: rcond
       procedure :: release
       procedure :: describe
+      procedure :: processes
+      procedure :: process
+      procedure :: sum_over_ranks
       final :: finalize
    end type petsc_solver_t
 
@@ -143,6 +148,20 @@ module vemcontact_solver_petsc
          import :: c_int, c_ptr
          type(c_ptr), value :: handle
       end function vc_petsc_iterations
+
+      integer(c_int) function vc_petsc_distribute(handle, own_dofs, shares) bind(c, name='vc_petsc_distribute')
+         import :: c_int, c_ptr, c_int64_t
+         type(c_ptr), value :: handle
+         integer(c_int64_t), value :: own_dofs
+         integer(c_int), value :: shares
+      end function vc_petsc_distribute
+
+      integer(c_int) function vc_petsc_sum(x, n) bind(c, name='vc_petsc_sum')
+         import :: c_int, c_int64_t, c_double
+         real(c_double), intent(inout) :: x(*)
+         integer(c_int64_t), value :: n
+      end function vc_petsc_sum
+
    end interface
 
 contains
@@ -194,11 +213,11 @@ contains
    end function mpi_launched
 
    !> The matrix of the pattern of `a` and the solver; for GAMG, the near null
-   !> space of the rigid-body motions of the nodes `coords(2, nnode)`.  `perm`, a
-   !> nodal fill-reducing ordering (nested dissection), numbers the dofs for PETSc:
-   !> with several MPI processes each gets a contiguous share of it, a compact part
-   !> of the mesh (vemcontact_solver_factory asks for it only then; PETSc's solvers
-   !> order for themselves).
+   !> space of the rigid-body motions of the nodes `coords(2, nnode)`.  `perm`
+   !> numbers the dofs for PETSc, node by node: with several MPI processes each owns
+   !> a contiguous share of it, `owned_dofs` long (the driver's partition of the
+   !> mesh: each share a part), or an even split without `owned_dofs`; PETSc's
+   !> solvers order for themselves.
    subroutine analyze(self, a, error, perm, coords)
       class(petsc_solver_t), intent(inout) :: self
       type(sym_csc_t), intent(in) :: a
@@ -225,6 +244,11 @@ contains
       end if
       call vc_petsc_free(self%handle)
       st = vc_petsc_create(self%handle, int(self%method, c_int))
+      if (st /= st_ok) then
+         call fatal_error(error, 'error: '//status_text(st, c_null_ptr), err_solver)
+         return
+      end if
+      st = vc_petsc_distribute(self%handle, int(self%owned_dofs, c_int64_t), merge(1_c_int, 0_c_int, self%shares))
       if (st /= st_ok) then
          call fatal_error(error, 'error: '//status_text(st, c_null_ptr), err_solver)
          return
@@ -360,6 +384,28 @@ contains
       write (buf, '(i0)') vc_petsc_comm_size()
       if (vc_petsc_comm_size() > 1) s = s//' on '//trim(buf)//' MPI processes'
    end function describe
+
+   !> The MPI processes of PETSc's communicator (1 while PETSc is not running).
+   integer function processes(self)
+      class(petsc_solver_t), intent(in) :: self
+      processes = merge(petsc_ranks(), petsc_ranks(), self%shares)
+   end function processes
+
+   !> This process's rank (0 while PETSc is not running).
+   integer function process(self)
+      class(petsc_solver_t), intent(in) :: self
+      process = merge(petsc_rank(), petsc_rank(), self%shares)
+   end function process
+
+   !> x = the sum of x over the processes (MPI_Allreduce), the same on every process.
+   subroutine sum_over_ranks(self, x, error)
+      class(petsc_solver_t), intent(in) :: self
+      real(wp), intent(inout) :: x(:)
+      type(error_t), allocatable, intent(out) :: error
+      if (self%processes() == 1 .or. size(x) == 0) return
+      if (vc_petsc_sum(x, int(size(x), c_int64_t)) /= st_ok) &
+         call fatal_error(error, 'error: MPI_Allreduce failed in the sum over the processes', err_solver)
+   end subroutine sum_over_ranks
 
    impure elemental subroutine finalize(self)
       type(petsc_solver_t), intent(inout) :: self

@@ -26,7 +26,10 @@
  * entry point with the same, replicated arguments (the driver runs on every
  * process); the matrix is distributed by rows, whole nodes (2 rows) per process,
  * each process inserting its own rows; the solution is gathered back to every
- * process, so that the callers stay identical.
+ * process, so that the callers stay identical.  With vc_petsc_distribute, each
+ * process owns as many rows as it asks for (the driver's partition of the mesh)
+ * and may pass its share of the matrix instead of the whole: the shares are
+ * added (ADD_VALUES) into PETSc's matrix.
  */
 #include <fenv.h>
 #include <stdint.h>
@@ -69,6 +72,8 @@ typedef struct {
     int64_t *pos_lower;   /* CSC entry k -> position of (j, i); -1 on the diagonal */
     PetscScalar *val;     /* CSR values */
     int set_up;           /* the KSP holds the operator of the last factorize */
+    int64_t own_dofs;     /* rows of this process as vc_petsc_distribute asked; -1: an even split */
+    int shares;           /* factorize gets this process's share of the matrix (vc_petsc_distribute) */
     PetscInt iterations;  /* of the last solve */
     PetscReal rnorm;      /* residual norm of the last solve */
     char message[512];
@@ -200,6 +205,7 @@ int vc_petsc_create(void **handle, int kind)
     h = calloc(1, sizeof(*h));
     if (!h) return VC_PETSC_NOMEM;
     h->kind = kind;
+    h->own_dofs = -1;
     *handle = h;
     return VC_PETSC_OK;
 }
@@ -261,9 +267,9 @@ void vc_petsc_message(void *handle, char *buf, int len)
 /* Build the full CSR pattern of the symmetric matrix whose upper triangle is the
  * 1-based CSC (col_ptr, row_idx) of order n, the matrix, the solver and, with
  * coords (2 per node, ndof = 2 nnode), the rigid-body near null space.  With
- * has_perm, PETSc numbers the dofs in the order perm (1-based, node by node: a
- * nested-dissection ordering keeps each process's contiguous share of it compact,
- * which bounds the communication); without it, in the caller's order. */
+ * has_perm, PETSc numbers the dofs in the order perm (1-based, node by node: the
+ * driver's partition lists each process's nodes together, so that its contiguous
+ * share of the order is its part of the mesh); without it, in the caller's order. */
 int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int32_t *row_idx, const double *coords,
                      int has_coords, const int32_t *perm, int has_perm, int64_t *info)
 {
@@ -357,6 +363,19 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
     rem = nn % size;
     lnodes = base + (rank < rem ? 1 : 0);
     snode = rank * base + (rank < rem ? rank : rem);
+    if (h->own_dofs >= 0) {
+        /* the rows vc_petsc_distribute asked for, after those of the lower ranks */
+        int64_t mine = h->own_dofs / 2, before = 0, total = 0;
+        MPI_Exscan(&mine, &before, 1, MPI_INT64_T, MPI_SUM, PETSC_COMM_WORLD);
+        MPI_Allreduce(&mine, &total, 1, MPI_INT64_T, MPI_SUM, PETSC_COMM_WORLD);
+        if (rank == 0) before = 0;
+        if (total != nn || h->own_dofs % 2 != 0) {
+            st = VC_PETSC_BAD_INPUT;
+            goto done;
+        }
+        lnodes = mine;
+        snode = before;
+    }
     h->rstart = (PetscInt)(2 * snode);
     h->nloc = (PetscInt)(2 * lnodes);
     h->perm = malloc((size_t)n * sizeof(PetscInt));
@@ -481,11 +500,52 @@ int vc_petsc_factorize(void *handle, int64_t n, const double *val, double rtol, 
         h->val[h->pos_upper[k]] = val[k];
         if (h->pos_lower[k] >= 0) h->val[h->pos_lower[k]] = val[k];
     }
+    if (h->shares) {
+        /* the shares are added: start from zero after an earlier assembly */
+        PetscBool assembled = PETSC_FALSE;
+        CHECK(MatAssembled(h->a, &assembled), "MatAssembled", h->message);
+        if (assembled) CHECK(MatZeroEntries(h->a), "MatZeroEntries", h->message);
+    }
     for (r = 0; r < h->nloc; r++) {
         PetscInt grow = h->rstart + r, i = h->perm[grow];
         PetscInt len = h->row_ptr[i + 1] - h->row_ptr[i];
-        CHECK(MatSetValues(h->a, 1, &grow, len, h->pcol + h->lptr[r], h->val + h->row_ptr[i], INSERT_VALUES),
+        CHECK(MatSetValues(h->a, 1, &grow, len, h->pcol + h->lptr[r], h->val + h->row_ptr[i],
+                           h->shares ? ADD_VALUES : INSERT_VALUES),
               "MatSetValues", h->message);
+    }
+    if (h->shares) {
+        /* this share's entries in the rows of the other processes: only its non-zeros
+         * (the rows its elements touch), sent by PETSc at assembly and added there */
+        PetscInt g, q, m, *cols = NULL;
+        PetscScalar *vals = NULL;
+        PetscInt maxlen = 0;
+        for (g = 0; g < h->n; g++)
+            if (h->row_ptr[g + 1] - h->row_ptr[g] > maxlen) maxlen = h->row_ptr[g + 1] - h->row_ptr[g];
+        cols = malloc((size_t)(maxlen > 0 ? maxlen : 1) * sizeof(PetscInt));
+        vals = malloc((size_t)(maxlen > 0 ? maxlen : 1) * sizeof(PetscScalar));
+        if (!cols || !vals) {
+            free(cols);
+            free(vals);
+            st = VC_PETSC_NOMEM;
+            goto done;
+        }
+        for (g = 0; g < h->n && st == VC_PETSC_OK; g++) {
+            PetscInt i = h->perm[g];
+            if (g >= h->rstart && g < h->rstart + h->nloc) continue;
+            m = 0;
+            for (q = h->row_ptr[i]; q < h->row_ptr[i + 1]; q++) {
+                if (h->val[q] == 0.0) continue;
+                cols[m] = h->iperm[h->col_idx[q]];
+                vals[m++] = h->val[q];
+            }
+            if (m > 0) {
+                PetscErrorCode ierr = MatSetValues(h->a, 1, &g, m, cols, vals, ADD_VALUES);
+                if (ierr) st = fail(ierr, "MatSetValues", h->message);
+            }
+        }
+        free(cols);
+        free(vals);
+        if (st != VC_PETSC_OK) goto done;
     }
     CHECK(MatAssemblyBegin(h->a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin", h->message);
     CHECK(MatAssemblyEnd(h->a, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd", h->message);
@@ -560,6 +620,43 @@ int vc_petsc_iterations(void *handle)
     return h ? (int)h->iterations : 0;
 }
 
+/* Before vc_petsc_analyze: this process owns own_dofs rows (whole nodes; the ranks
+ * in order, the counts adding up to n), the first of the analysed permutation's
+ * order after those of the lower ranks; with shares, vc_petsc_factorize gets this
+ * process's share of the matrix, the matrix being the sum of the shares. */
+int vc_petsc_distribute(void *handle, int64_t own_dofs, int shares)
+{
+    vc_petsc_t *h = handle;
+    if (!h) return VC_PETSC_ORDER;
+    h->own_dofs = own_dofs;
+    h->shares = shares;
+    return VC_PETSC_OK;
+}
+
+/* x = the sum of x over the processes, on every process. */
+int vc_petsc_sum(double *x, int64_t n)
+{
+    fenv_t env;
+    int st = VC_PETSC_OK;
+    int64_t done = 0, chunk;
+    PetscMPIInt size = 1;
+    PetscBool done_init = PETSC_FALSE;
+    PetscInitialized(&done_init);
+    if (!done_init) return VC_PETSC_OK;
+    MPI_Comm_size(PETSC_COMM_WORLD, &size);
+    if (size == 1) return VC_PETSC_OK;
+    feholdexcept(&env);
+    while (done < n && st == VC_PETSC_OK) {
+        chunk = n - done > 1073741824 ? 1073741824 : n - done;
+        if (MPI_Allreduce(MPI_IN_PLACE, x + done, (int)chunk, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD) != MPI_SUCCESS)
+            st = VC_PETSC_ERROR;
+        done += chunk;
+    }
+    feclearexcept(FE_ALL_EXCEPT);
+    fesetenv(&env);
+    return st;
+}
+
 #else /* without PETSc */
 
 int vc_petsc_initialize(const char *options)
@@ -608,5 +705,15 @@ int vc_petsc_iterations(void *handle)
 {
     (void)handle;
     return 0;
+}
+int vc_petsc_distribute(void *handle, int64_t own_dofs, int shares)
+{
+    (void)handle, (void)own_dofs, (void)shares;
+    return VC_PETSC_NOT_BUILT;
+}
+int vc_petsc_sum(double *x, int64_t n)
+{
+    (void)x, (void)n;
+    return VC_PETSC_OK;
 }
 #endif

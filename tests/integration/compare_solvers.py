@@ -19,12 +19,15 @@ HDF5 results) must agree within a tolerance derived from the stopping rules:
   difference of two such answers is bounded by cond(A) times the tolerance too,
   so the same bound holds with rtol replaced by max(rtol, 1e-10).
 
-With --launcher the PETSc solvers run under that MPI launcher (the matrix and the
-solve distributed over its processes) and must give the serial CHOLMOD answer within
-the same tolerances, from one set of result files (no JOB.rankN files left).
---options are added to the PETSc solvers' command lines (`--ordering metis`: the
-processes' rows are contiguous shares of a nested-dissection ordering, as they are
-by default from 5000 nodes up).
+With --launcher the PETSc solvers run under that MPI launcher (the mesh partitioned,
+each process assembling its own elements, the matrix and the solve distributed) and
+must give the serial CHOLMOD answer within the same tolerances, from one set of result
+files (no file of the other processes: nothing named JOB.rank*); the HDF5 root
+attributes `processes` and `elements_per_process` must show the partition: more than
+one process, the elements per process adding up to the element count, and every
+process with a fair share (at least a quarter of an even one; METIS balances the
+nodes to within 3 %, and the elements follow them).  Serial runs must say one process
+with every element.  --options are added to the PETSc solvers' command lines.
 
 Exit status 0 when every comparison holds, 1 otherwise; each comparison is printed.
 """
@@ -51,12 +54,29 @@ def run(exe, deck, out, solver, extra=(), launcher=()):
         print(f"FAIL {os.path.basename(deck)} {solver}: exit {res.returncode}\n{res.stderr}")
         return None
     job = os.path.splitext(os.path.basename(deck))[0]
-    left = [f for f in os.listdir(out) if ".rank" in f]
+    left = [f for f in os.listdir(out) if f.startswith(job + ".rank")]
     if left:
         print(f"FAIL {os.path.basename(deck)} {solver}: files of other processes left: {left}")
         return None
     with h5py.File(os.path.join(out, job + ".h5"), "r") as f:
+        if not partition_ok(f, os.path.basename(deck), solver, bool(launcher)):
+            return None
         return {k: f["steps"][k]["U"][()] for k in f["steps"]}, os.path.join(out, job + ".mtx")
+
+
+def partition_ok(f, deck, solver, launched):
+    """The partition the results record: several processes with fair shares under the launcher."""
+    nelem = f["mesh/element_type"].shape[0]
+    nproc = int(f.attrs["processes"])
+    per = np.asarray(f.attrs["elements_per_process"]).ravel()
+    good = len(per) == nproc and per.sum() == nelem
+    if launched:
+        good &= nproc > 1 and per.min() >= 0.25 * nelem / nproc
+    else:
+        good &= nproc == 1
+    print(f"{'ok  ' if good else 'FAIL'} {deck} {solver}: {nproc} processes, elements per process "
+          f"{per.tolist()} of {nelem}")
+    return bool(good)
 
 
 def condition(mtx):

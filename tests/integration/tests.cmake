@@ -103,17 +103,20 @@ else()
   set_tests_properties(petsc_solvers PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
 endif()
 set_tests_properties(petsc_solvers PROPERTIES LABELS deck)
-# the same under the MPI launcher with 2 processes (matrix and solves distributed,
-# rows in nested-dissection order as from 5000 nodes up), against the serial CHOLMOD answer; skipped, saying why, without PETSc or mpiexec.
+# the same under the MPI launcher with 2 processes (the mesh partitioned, each process
+# assembling its elements, matrix and solves distributed, one set of result files), against
+# the serial CHOLMOD answer: a body load, two contact decks and a cantilever with nonzero
+# prescribed displacements and loads in two steps (the second without a new factorization);
+# the partition recorded in the HDF5 file checked; skipped, saying why, without PETSc or mpiexec.
 # Open MPI refuses root unless told (containers, CI run as root).
 if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
   add_test(NAME petsc_solvers_np2
     COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py"
-            --launcher "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" --options "--ordering metis"
+            --launcher "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2"
             $<TARGET_FILE:vemcontact>
             "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers-np2"
             "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp" "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp"
-            "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
+            "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp" "${VC_DECKS}/distributed_cantilever.inp")
   set_tests_properties(petsc_solvers_np2 PROPERTIES
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2)
 else()

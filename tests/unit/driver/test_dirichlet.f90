@@ -1,10 +1,11 @@
 !> Prescribed values moved to the right-hand side give the same solution as
-!> solving the reduced system by hand.
+!> solving the reduced system by hand; constrained shares of a matrix (a distributed
+!> run's) add up to the constrained matrix, their moves to the whole matrix's.
 program test_dirichlet
    use vemcontact_kinds, only: wp, i8
    use vemcontact_testing, only: checker_t
    use vemcontact_sparse_matrix, only: sym_csc_t
-   use vemcontact_driver_dirichlet, only: apply_dirichlet
+   use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_share, dirichlet_moves
    implicit none
    type(checker_t) :: t
    type(sym_csc_t) :: a
@@ -32,8 +33,42 @@ program test_dirichlet
    call t%close(x(1), 0.5_wp, 1.0e-14_wp, 'prescribed value')
    call t%close(x(2), 1.0_wp, 1.0e-14_wp, 'u2')
    call t%close(x(3), 1.0_wp + 1.0_wp/3.0_wp, 1.0e-14_wp, 'u3')
+   call test_shares(t)
    call t%finish()
 contains
+   ! K of the chain above split into two shares (the springs k=2 and k=3, one each),
+   ! dofs 1 and 3 held at 0.5 and -0.25: the shares, constrained with the whole
+   ! diagonal, add up to apply_dirichlet's matrix, and their moves plus the fixed rows
+   ! to its right-hand side.  Sums of two numbers: exact to round-off, 1e-15.
+   subroutine test_shares(t)
+      type(checker_t), intent(inout) :: t
+      type(sym_csc_t) :: whole, s1, s2
+      real(wp) :: fw(3), g(3), v(3), diag(3)
+      logical :: fx(3)
+      whole%n = 3
+      whole%col_ptr = [1_i8, 2_i8, 4_i8, 6_i8]
+      whole%row_idx = [1, 1, 2, 2, 3]
+      whole%val = [2.0_wp, -2.0_wp, 5.0_wp, -3.0_wp, 3.0_wp]
+      s1 = whole
+      s1%val = [2.0_wp, -2.0_wp, 2.0_wp, 0.0_wp, 0.0_wp]
+      s2 = whole
+      s2%val = [0.0_wp, 0.0_wp, 3.0_wp, -3.0_wp, 3.0_wp]
+      fx = [.true., .false., .true.]
+      v = [0.5_wp, 0.0_wp, -0.25_wp]
+      diag = [2.0_wp, 5.0_wp, 3.0_wp]
+      fw = [0.0_wp, 1.0_wp, 0.0_wp]
+      g = 0.0_wp
+      call dirichlet_moves(s1, fx, v, g)
+      call dirichlet_moves(s2, fx, v, g)
+      call apply_dirichlet(whole, fx, v, fw)
+      call t%close(1.0_wp + g(2), fw(2), 1.0e-15_wp, 'moves of the shares add up (free row)')
+      call constrain_share(s1, fx, diag, .true.)
+      call constrain_share(s2, fx, diag, .false.)
+      call t%close(maxval(abs(s1%val + s2%val - whole%val)), 0.0_wp, 0.0_wp, &
+                   'constrained shares add up to the constrained matrix', atol=1.0e-15_wp)
+      call t%close(s2%val(1), 0.0_wp, 0.0_wp, 'fixed diagonal held by the owner only', atol=0.0_wp)
+   end subroutine test_shares
+
    subroutine solve3(m, b, y)
       real(wp), intent(in) :: m(3, 3), b(3)
       real(wp), intent(out) :: y(3)
