@@ -35,10 +35,11 @@ module vemcontact_output_vtu
    !> VTK cell types of the quadratic FEM elements (same node order as Abaqus')
    integer, parameter :: vtk_quadratic_triangle = 22, vtk_quadratic_quad = 23
    !> Uncompressed bytes per zlib block: VTK reads any block size; 256 KiB keeps
-   !> zlib's per-call setup negligible and the block table short.
+   !> the compressor's per-call set-up negligible and the block table short.
    integer(i8), parameter :: zlib_block = 262144_i8
-   !> zlib level: 1 compresses float64 results nearly as well as the default 6
-   !> (the mantissas' low bytes are incompressible either way) at a fraction of the time.
+   !> Compression level (libdeflate's, vemcontact_output_zlib): 1 compresses float64
+   !> results nearly as well as zlib's default 6 (the mantissas' low bytes are
+   !> incompressible either way) at a fraction of the time.
    integer, parameter :: zlib_level = 1
    !> Component names of a 3 x 3 tensor in VTK's order (row by row).
    character(len=*), parameter :: tensor_names = ' ComponentName0="XX" ComponentName1="XY"' &

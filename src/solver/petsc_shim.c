@@ -120,6 +120,30 @@ static int fail(PetscErrorCode ierr, const char *what, char *msg)
         }                                                                                                 \
     } while (0)
 
+/* Open MPI's start for a process that no MPI launcher started (a singleton, the
+ * usual `vemcontact --solver gamg` or auto's gamg): by default its MPI_Init starts
+ * a helper daemon (orted) and probes every transport (UCX, ...), 0.33-0.45 s of
+ * a 5 s run on the peers' cantilever (docs/performance.md, "The peers'
+ * cantilever").  A singleton only ever talks to itself, so it is told not to
+ * start the daemon (ess_singleton_isolated; it then cannot spawn processes,
+ * which vemcontact never does) and to use the point-to-point layer ob1 over the
+ * self transport only: MPI_Init 0.05-0.09 s.  Only defaults: a variable the user
+ * has set wins (setenv without overwrite), and nothing changes under mpirun (the
+ * launcher's variables are set; the same ones as mpi_launched in petsc.f90) or
+ * with another MPI. */
+static void singleton_mpi_defaults(void)
+{
+#ifdef OPEN_MPI
+    static const char *launched[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "PMI_RANK"};
+    size_t k;
+    for (k = 0; k < sizeof launched / sizeof launched[0]; k++)
+        if (getenv(launched[k])) return;
+    setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+    setenv("OMPI_MCA_pml", "ob1", 0);
+    setenv("OMPI_MCA_btl", "self", 0);
+#endif
+}
+
 int vc_petsc_initialize(const char *options)
 {
     fenv_t env;
@@ -137,6 +161,7 @@ int vc_petsc_initialize(const char *options)
         argv_store[0] = arg0;
         argv_store[1] = arg1;
         argv_store[2] = NULL;
+        singleton_mpi_defaults();
         if (PetscInitialize(&argc, &argv, NULL, NULL)) {
             snprintf(init_message, sizeof init_message, "PETSc could not be initialized (is MPI usable?)");
             st = VC_PETSC_ERROR;
