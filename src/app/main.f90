@@ -34,6 +34,8 @@ program vemcontact_main
    real(wp) :: tstart
    integer :: nremoved, iw, rank
    logical :: solver_chosen
+   !> the solver was chosen by `auto` (choose_solver)
+   logical :: auto_chosen = .false.
    !> Whether an error now is met by every process alike (reading the deck and choosing
    !> the solver: the same on all): then rank 0 reports it and all end normally; any
    !> other error may be one process's alone (rank 0's lock, log and files, a failed
@@ -113,6 +115,7 @@ program vemcontact_main
    opts%job = job
    opts%ordering = cli%ordering
    opts%solver = cli%solver
+   opts%solver_fallback = auto_chosen .and. uses_petsc(cli%solver)
    opts%write_matrix = cli%write_matrix
    opts%compress_vtu = cli%compress_vtu
    opts%write_files = rank == 0
@@ -151,6 +154,7 @@ contains
          end if
       end if
       auto = cli%solver == solver_auto
+      auto_chosen = auto
       if (auto) then
          has_contact = .false.
          if (allocated(model%pairs)) has_contact = size(model%pairs) > 0

@@ -23,7 +23,7 @@ module vemcontact_driver_linear
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: build_pattern
    use vemcontact_solver_linear_solver, only: linear_solver_t
-   use vemcontact_solver_factory, only: make_solver, solver_auto
+   use vemcontact_solver_factory, only: make_solver, solver_auto, solver_cholmod
    use vemcontact_solver_ordering, only: node_graph_from_elements, nodal_metis_ordering
    use vemcontact_driver_validate, only: validate_elements
    use vemcontact_driver_ranges, only: validate_ranges
@@ -78,6 +78,11 @@ module vemcontact_driver_linear
       type(partition_t) :: partition
       !> distributed: the diagonal of the whole stiffness (summed over the processes)
       real(wp), allocatable :: kdiag(:)
+      !> the solver was chosen by `auto`: if it fails in a step without contact, the
+      !> step is solved again with CHOLMOD (one process only; see solve_state)
+      logical :: fallback = .false.
+      !> a fallback to CHOLMOD happened (the log and the results name the solver that ran)
+      logical :: fell_back = .false.
    contains
       procedure :: setup
       procedure :: solve_state
@@ -89,6 +94,7 @@ module vemcontact_driver_linear
       procedure :: elastic_times
       procedure :: largest_elastic_diagonal
       procedure, private :: constrain_distributed
+      procedure, private :: solve_linear
    end type linear_system_t
 
 contains
@@ -231,9 +237,8 @@ contains
       type(contact_state_t), intent(inout), optional :: contact
       type(logger_t), intent(inout), optional :: log
       logical, allocatable :: fixed(:)
-      real(wp), allocatable :: f(:)
-      real(wp) :: t0
-      logical :: warned
+      real(wp), allocatable :: f(:), f0(:), u0(:)
+      integer :: j, k
       self%iterations = 0
       self%factorizations = 0
       self%t_search = 0
@@ -249,6 +254,45 @@ contains
             return
          end if
       end if
+      f0 = f
+      call self%solve_linear(model, st, fixed, f, u, error, log)
+      if (.not. allocated(error) .or. .not. self%fallback .or. self%dist) return
+      if (error%code /= err_solver) return
+      ! the iterative solver `auto` chose failed (CG did not converge, or its set-up
+      ! failed): the step again with the direct solver, which needs no convergence
+      ! the message's first line (its help names --solver, which auto replaces here)
+      k = index(error%message, new_line('a'))
+      if (k == 0) k = len(error%message) + 1
+      j = 1
+      if (index(error%message, 'error: ') == 1) j = 8
+      if (present(log)) call log%say('  note: '//error%message(j:k - 1)//new_line('a')// &
+                                     '  solver auto: falling back to cholmod for this run')
+      deallocate (error)
+      call self%solver%release()
+      deallocate (self%solver)
+      call make_solver(solver_cholmod, self%solver, error)
+      if (allocated(error)) return
+      self%fallback = .false.
+      self%fell_back = .true.
+      allocate (u0(size(u)), source=0.0_wp)
+      call self%build_system(model, error, u=u0)
+      if (allocated(error)) return
+      f = f0
+      call self%solve_linear(model, st, fixed, f, u, error, log)
+   end subroutine solve_state
+
+   !> solve_state without contact: constraints, a factorization when the fixed dofs
+   !> changed, one solve.
+   subroutine solve_linear(self, model, st, fixed, f, u, error, log)
+      class(linear_system_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(load_state_t), intent(in) :: st
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(inout) :: f(:), u(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(logger_t), intent(inout), optional :: log
+      real(wp) :: t0
+      logical :: warned
       self%refactorized = .false.
       self%t_factorize = 0
       if (.not. self%factored) then
@@ -296,7 +340,7 @@ contains
                           'numerically singular', err_solver)
          return
       end if
-   end subroutine solve_state
+   end subroutine solve_linear
 
    !> Kb = K + the contact terms with the constraints, f = fext + the contact terms
    !> (constrained); a new pattern and analysis when the pairing left the pattern.

@@ -39,6 +39,9 @@ module vemcontact_driver_static
       character(len=:), allocatable :: job
       integer :: ordering = 0                 !< vemcontact_driver_linear's ordering_*
       integer :: solver = 0                   !< vemcontact_solver_factory's solver_* (0: auto)
+      !> `solver` was chosen by `auto`: an iterative solver that fails falls back to
+      !> CHOLMOD (one process; vemcontact_driver_linear's solve_state)
+      logical :: solver_fallback = .false.
       logical :: write_matrix = .false.
       logical :: compress_vtu = .true.        !< zlib-compressed .vtu arrays
       !> .false.: a process of a distributed run other than rank 0, which solves with
@@ -143,6 +146,7 @@ contains
       end if
       call sys%setup(model, opts%ordering, error, contact, opts%solver)
       if (allocated(error)) return
+      sys%fallback = opts%solver_fallback
       ! valid but known to be poor: locking FEM sections, non-convex FEM quads
       warnings = element_warnings(model)
       do iw = 1, size(warnings)
@@ -221,6 +225,12 @@ contains
          call advance_load_state(model%steps(istep), st)
          call sys%solve_state(model, st, u, error, contact, log)
          if (allocated(error)) return
+         if (sys%fell_back .and. opts%write_files) then
+            ! the solver that ran, once it is CHOLMOD after a failed CG
+            call h5%set_solver(sys%solver%describe(), error)
+            if (allocated(error)) return
+            sys%fell_back = .false.
+         end if
          if (sys%iterations > 0) then
             write (buf, '(2x,a,i0,a,i0,a)') 'contact converged in ', sys%iterations, ' iterations (', &
                sys%factorizations, ' numeric factorizations)'

@@ -21,7 +21,7 @@ module vemcontact_output_hdf5
    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5lexists_f, h5fcreate_f, h5fclose_f, &
                    h5fflush_f, h5ldelete_f, h5gcreate_f, h5gopen_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
                    h5sclose_f, h5dcreate_f, h5dwrite_f, h5dclose_f, h5acreate_f, h5awrite_f, &
-                   h5aclose_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
+                   h5aclose_f, h5aexists_f, h5adelete_f, h5tcopy_f, h5tset_size_f, h5tset_strpad_f, h5tclose_f, &
                    h5kind_to_type, H5F_ACC_TRUNC_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, &
                    H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_STD_I64LE, H5T_C_S1, H5T_STR_NULLPAD_F, &
                    H5_REAL_KIND, H5_INTEGER_KIND
@@ -62,6 +62,7 @@ module vemcontact_output_hdf5
       procedure :: close => h5_close
       procedure :: discard => h5_discard
       procedure :: is_open => h5_is_open
+      procedure :: set_solver => h5_set_solver
       final :: h5_final
    end type h5_writer_t
 
@@ -804,6 +805,23 @@ contains
       call h5sclose_f(space, hdferr)
       if (failed(self, hdferr, 'closing the dataspace of attribute '//name, error)) return
    end subroutine put_int_array_attribute
+
+   !> The root attribute `solver` replaced by `solver`: the one that ran, when it is not
+   !> the one the file was opened with (`auto`'s fallback to CHOLMOD).
+   subroutine h5_set_solver(self, solver, error)
+      class(h5_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: solver
+      type(error_t), allocatable, intent(out) :: error
+      integer :: hdferr
+      logical :: exists
+      call h5aexists_f(self%file, 'solver', exists, hdferr)
+      if (failed(self, hdferr, 'looking up attribute solver', error)) return
+      if (exists) then
+         call h5adelete_f(self%file, 'solver', hdferr)
+         if (failed(self, hdferr, 'deleting attribute solver', error)) return
+      end if
+      call put_string_attribute(self, self%file, 'solver', solver, error)
+   end subroutine h5_set_solver
 
    !> Fixed-length, null-padded ASCII string attribute of exactly len(value)
    !> characters (h5py returns it as `bytes`).  An empty value is stored as one

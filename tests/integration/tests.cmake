@@ -150,6 +150,18 @@ add_test(NAME auto_solver_small
   COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/check_solver_attribute.py" $<TARGET_FILE:vemcontact>
           "${CMAKE_CURRENT_BINARY_DIR}/auto-solver-small" "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" cholmod)
 set_tests_properties(auto_solver_small PROPERTIES LABELS deck)
+# auto's gamg that cannot converge (-ksp_max_it 2) falls back to CHOLMOD: the exact
+# linear field of a 2e5-unknown bar and the HDF5 attribute naming cholmod
+if(VC_HAVE_PETSC)
+  add_test(NAME auto_solver_fallback
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/solver_fallback.py" $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/auto-solver-fallback")
+else()
+  add_test(NAME auto_solver_fallback COMMAND ${CMAKE_COMMAND} -E echo
+    "skipped: vemcontact was built without PETSc (auto is cholmod)")
+  set_tests_properties(auto_solver_fallback PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+endif()
+set_tests_properties(auto_solver_fallback PROPERTIES LABELS deck)
 add_test(NAME cli_unknown_solver COMMAND vemcontact --solver frobnicate x.inp)
 set_tests_properties(cli_unknown_solver PROPERTIES PASS_REGULAR_EXPRESSION "--solver takes auto, cholmod, gamg, hypre, mumps")
 
