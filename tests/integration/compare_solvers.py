@@ -22,7 +22,8 @@ HDF5 results) must agree within a tolerance derived from the stopping rules:
 With --launcher the PETSc solvers run under that MPI launcher (the mesh partitioned,
 each process assembling its own elements, the matrix and the solve distributed) and
 must give the serial CHOLMOD answer within the same tolerances, from one set of result
-files (no file of the other processes: nothing named JOB.rank*); the HDF5 root
+files (no file of the other processes: nothing named JOB.rank*, and the same files as
+the serial CHOLMOD run but its --write-matrix JOB.mtx); the HDF5 root
 attributes `processes` and `elements_per_process` must show the partition: more than
 one process, the elements per process adding up to the element count, and every
 process with a fair share (at least a quarter of an even one; METIS balances the
@@ -61,7 +62,8 @@ def run(exe, deck, out, solver, extra=(), launcher=()):
     with h5py.File(os.path.join(out, job + ".h5"), "r") as f:
         if not partition_ok(f, os.path.basename(deck), solver, bool(launcher)):
             return None
-        return {k: f["steps"][k]["U"][()] for k in f["steps"]}, os.path.join(out, job + ".mtx")
+        return ({k: f["steps"][k]["U"][()] for k in f["steps"]}, os.path.join(out, job + ".mtx"),
+                sorted(f for f in os.listdir(out) if not f.endswith(".mtx")))
 
 
 def partition_ok(f, deck, solver, launched):
@@ -106,14 +108,19 @@ def main(argv):
         if ref is None:
             ok = False
             continue
-        uref, mtx = ref
+        uref, mtx, files_ref = ref
         kappa = condition(mtx)
         for solver in ("gamg", "hypre", "mumps"):
             got = run(exe, deck, os.path.join(outdir, name, solver), solver, options, launcher=launcher)
             if got is None:
                 ok = False
                 continue
-            u, _ = got
+            u, _, files = got
+            if launcher:
+                same = files == files_ref
+                ok &= same
+                print(f"{'ok  ' if same else 'FAIL'} {name} {solver}: the files of the serial run"
+                      + ("" if same else f": {files} against {files_ref}"))
             tol = 100 * kappa * EPS if solver == "mumps" else 10 * kappa * RTOL
             for step in uref:
                 scale = np.max(np.abs(uref[step]))
