@@ -715,16 +715,22 @@ contains
       if (failed(self, hdferr, 'closing the string type of '//name, error)) return
    end subroutine put_strings
 
-   !> Scalar attribute of `file_type` from `buf` of `mem_type`.
-   subroutine put_attribute(self, loc, name, file_type, mem_type, buf, error)
+   !> Attribute of `file_type` from `buf` of `mem_type`: a scalar, or with `length`
+   !> a one-dimensional array of that many values.
+   subroutine put_attribute(self, loc, name, file_type, mem_type, buf, error, length)
       class(h5_writer_t), intent(in) :: self
       integer(hid_t), intent(in) :: loc, file_type, mem_type
       character(len=*), intent(in) :: name
       type(c_ptr), intent(in) :: buf
       type(error_t), allocatable, intent(inout) :: error
+      integer, intent(in), optional :: length
       integer(hid_t) :: space, attr
       integer :: hdferr, ignore
-      call h5screate_f(H5S_SCALAR_F, space, hdferr)
+      if (present(length)) then
+         call h5screate_simple_f(1, [int(length, hsize_t)], space, hdferr)
+      else
+         call h5screate_f(H5S_SCALAR_F, space, hdferr)
+      end if
       if (failed(self, hdferr, 'creating the dataspace of attribute '//name, error)) return
       call h5acreate_f(loc, name, file_type, space, attr, hdferr)
       if (failed(self, hdferr, 'creating attribute '//name, error)) then
@@ -770,7 +776,8 @@ contains
                          c_loc(buf), error)
    end subroutine put_int_attribute
 
-   !> One-dimensional 32-bit integer attribute `name` of `loc` holding `values`.
+   !> One-dimensional 32-bit integer attribute `name` of `loc` holding `values` (one
+   !> zero when `values` is empty: HDF5 has no empty simple dataspace).
    subroutine put_int_array_attribute(self, loc, name, values, error)
       class(h5_writer_t), intent(in) :: self
       integer(hid_t), intent(in) :: loc
@@ -778,32 +785,10 @@ contains
       integer(ip), intent(in) :: values(:)
       type(error_t), allocatable, intent(inout) :: error
       integer(ip), allocatable, target :: buf(:)
-      integer(hid_t) :: space, attr
-      integer(hsize_t) :: dims(1)
-      integer :: hdferr, ignore
       buf = values
       if (size(buf) == 0) buf = [0_ip]
-      dims = size(values, kind=hsize_t)
-      call h5screate_simple_f(1, max(dims, 1_hsize_t), space, hdferr)
-      if (failed(self, hdferr, 'creating the dataspace of attribute '//name, error)) return
-      call h5acreate_f(loc, name, H5T_STD_I32LE, space, attr, hdferr)
-      if (failed(self, hdferr, 'creating attribute '//name, error)) then
-         call h5sclose_f(space, ignore)
-         return
-      end if
-      call h5awrite_f(attr, h5kind_to_type(ip, H5_INTEGER_KIND), c_loc(buf), hdferr)
-      if (failed(self, hdferr, 'writing attribute '//name, error)) then
-         call h5aclose_f(attr, ignore)
-         call h5sclose_f(space, ignore)
-         return
-      end if
-      call h5aclose_f(attr, hdferr)
-      if (failed(self, hdferr, 'closing attribute '//name, error)) then
-         call h5sclose_f(space, ignore)
-         return
-      end if
-      call h5sclose_f(space, hdferr)
-      if (failed(self, hdferr, 'closing the dataspace of attribute '//name, error)) return
+      call put_attribute(self, loc, name, H5T_STD_I32LE, h5kind_to_type(ip, H5_INTEGER_KIND), &
+                         c_loc(buf), error, size(buf))
    end subroutine put_int_array_attribute
 
    !> The root attribute `solver` replaced by `solver`: the one that ran, when it is not

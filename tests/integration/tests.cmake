@@ -87,6 +87,13 @@ vc_deck_test(err_range_modulus ${VC_DECKS}/err_range_modulus.inp 1
 vc_deck_test(err_range_product ${VC_DECKS}/err_range_product.inp 1
   "err_range_product.inp:29: error: the displacement the loads make .* is about 1e270[)], beyond 1e-250 .. 1e250")
 
+# A test that only says why it is skipped (a build without PETSc or without mpiexec):
+# CTest reports it as skipped, not passed.
+function(vc_skipped_test name why)
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} -E echo "skipped: ${why}")
+  set_tests_properties(${name} PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+endfunction()
+
 # The PETSc solvers (gamg, hypre, mumps) against CHOLMOD on a VEM cantilever, a
 # polygon mesh, a Voronoi contact deck and an FEM contact deck, within tolerances
 # derived from their stopping rules (compare_solvers.py); skipped, saying why,
@@ -98,9 +105,7 @@ if(VC_HAVE_PETSC)
             "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp"
             "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp" "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
 else()
-  add_test(NAME petsc_solvers COMMAND ${CMAKE_COMMAND} -E echo
-    "skipped: vemcontact was built without PETSc (pkg-config PETSc not found; scripts/install-deps.sh installs petsc-dev)")
-  set_tests_properties(petsc_solvers PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+  vc_skipped_test(petsc_solvers "vemcontact was built without PETSc (pkg-config PETSc not found; scripts/install-deps.sh installs petsc-dev)")
 endif()
 set_tests_properties(petsc_solvers PROPERTIES LABELS deck)
 # the same under the MPI launcher with 2 processes (the mesh partitioned, each process
@@ -120,9 +125,7 @@ if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
   set_tests_properties(petsc_solvers_np2 PROPERTIES
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2)
 else()
-  add_test(NAME petsc_solvers_np2 COMMAND ${CMAKE_COMMAND} -E echo
-    "skipped: needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
-  set_tests_properties(petsc_solvers_np2 PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+  vc_skipped_test(petsc_solvers_np2 "needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
 endif()
 set_tests_properties(petsc_solvers_np2 PROPERTIES LABELS deck)
 # an error on one process (rank 0 finds the job locked) ends all of them, with its status
@@ -134,9 +137,7 @@ if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
   set_tests_properties(mpi_error_ends_all PROPERTIES
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 TIMEOUT 120)
 else()
-  add_test(NAME mpi_error_ends_all COMMAND ${CMAKE_COMMAND} -E echo
-    "skipped: needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
-  set_tests_properties(mpi_error_ends_all PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+  vc_skipped_test(mpi_error_ends_all "needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
 endif()
 set_tests_properties(mpi_error_ends_all PROPERTIES LABELS deck)
 # without PETSc, --solver gamg stops with a clear message, exit status 1
@@ -157,9 +158,7 @@ if(VC_HAVE_PETSC)
     COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/solver_fallback.py" $<TARGET_FILE:vemcontact>
             "${CMAKE_CURRENT_BINARY_DIR}/auto-solver-fallback")
 else()
-  add_test(NAME auto_solver_fallback COMMAND ${CMAKE_COMMAND} -E echo
-    "skipped: vemcontact was built without PETSc (auto is cholmod)")
-  set_tests_properties(auto_solver_fallback PROPERTIES SKIP_REGULAR_EXPRESSION "skipped: ")
+  vc_skipped_test(auto_solver_fallback "vemcontact was built without PETSc (auto is cholmod)")
 endif()
 set_tests_properties(auto_solver_fallback PROPERTIES LABELS deck)
 add_test(NAME cli_unknown_solver COMMAND vemcontact --solver frobnicate x.inp)
