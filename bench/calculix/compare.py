@@ -734,7 +734,7 @@ def main():
     ap.add_argument("--lloyd", type=int, default=20, help="Lloyd iterations of the Voronoi mesh")
     ap.add_argument("--hertz", nargs="*", default=["389", "600", "1155", "h5k", "h20k", "h100k"])
     ap.add_argument("--rounds", type=int, default=2,
-                    help="alternating runs of each program on the cantilevers; the tables give the minimum")
+                    help="alternating runs of each program on every case; the tables give the minimum")
     ap.add_argument("--ccx-threads", type=int, nargs="+", default=CCX_THREADS,
                     help="OMP_NUM_THREADS settings of ccx, each run every round; the fastest counts")
     ap.add_argument("--residual-max", type=int, default=500,
