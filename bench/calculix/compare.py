@@ -1,18 +1,29 @@
 #!/usr/bin/env python3
-"""vemcontact against CalculiX (ccx) on the same CPE4 decks: linear cantilever and
-Hertz contact.  Run through bench/calculix/run.sh (which installs ccx and builds
-vemcontact); by hand, from the repository root:
+"""vemcontact against CalculiX (ccx): the linear CPE4 cantilever, the Voronoi
+cantilever (VEM polygons in vemcontact, the same mesh as CPE3 triangles in both
+codes) and Hertz contact.  Run through bench/calculix/run.sh (which installs ccx
+and builds vemcontact); by hand, from the repository root:
 
     PYTHONPATH=postprocess .venv/bin/python bench/calculix/compare.py [--sizes 50 100 200 500]
-        [--hertz 389 600 1155 h5k h20k h100k] [--residual-max 200]
+        [--voronoi 125000] [--seed 1] [--hertz 389 600 1155 h5k h20k h100k] [--rounds 2]
+        [--residual-max 500]
 
-Writes bench/results/calculix_linear.csv, bench/results/calculix_hertz.csv,
-bench/calculix/figures/calculix_scaling.png and docs/calculix-comparison.md.
-Every run is sequential (one process at a time) under /usr/bin/time -v: wall time
-("Elapsed") and peak resident memory ("Maximum resident set size") of the whole
-process.  Both codes get the same threads: OMP_NUM_THREADS = OPENBLAS_NUM_THREADS
-= the number of cores (ccx's own default is 1 thread; vemcontact's OpenBLAS would
-take all cores).
+Writes bench/results/calculix_linear.csv, calculix_voronoi.csv, calculix_hertz.csv,
+calculix_runs.csv (every timed run), calculix_phases.csv (vemcontact's phases of its
+fastest run of each case), bench/calculix/figures/calculix_scaling.png and
+docs/calculix-comparison.md.  `--hertz` with no name (or `--voronoi` with no
+size) keeps that part's rows of the previous run (its CSV) in the page, with their date.
+
+Every run is sequential (one process at a time): wall time measured around the
+process, peak resident memory by /usr/bin/time -f %M, and the load average
+(1 minute) before each run.  Every case runs `--rounds` times, alternating the
+programs, and the tables give the minimum of each.  Threads: vemcontact runs with
+its defaults (no OPENBLAS_NUM_THREADS / OMP_NUM_THREADS: one BLAS thread, and
+`--solver auto`, whose choice is read from the HDF5 root attribute `solver`); ccx
+with each of `--ccx-threads` (OMP_NUM_THREADS; default 1, its own default, and the
+number of cores, its documented way to use them: CalculiX uses one thread unless
+OMP_NUM_THREADS or CCX_NPROC_EQUATION_SOLVER says more), and its faster setting
+counts in the ratios.
 """
 import argparse
 import csv
@@ -25,6 +36,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 import numpy as np
 import h5py
@@ -36,26 +48,109 @@ PY = sys.executable
 P0, A_HALF = 83.60, 1.523          # analytical Hertz peak pressure and half-width
 
 NPROC = os.cpu_count() or 1
-ENV = dict(os.environ, OMP_NUM_THREADS=str(NPROC), OPENBLAS_NUM_THREADS=str(NPROC))
+ENV_VC = {k: v for k, v in os.environ.items() if k not in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")}
+CCX_THREADS = [1, NPROC]          # ccx runs with each (OMP_NUM_THREADS); the faster counts
 
 
-def timed(cmd, cwd):
-    """Run cmd under /usr/bin/time -v; return (wall s, peak MB, stdout)."""
+def env_ccx(t):
+    return dict(ENV_VC, OMP_NUM_THREADS=str(t))
+
+
+def ccx_progs(cwd, case):
+    """alternate() entries of ccx with each thread count of CCX_THREADS."""
+    return [(f"ccx t{t}", ["ccx", "ccx"], cwd, env_ccx(t), ccx_after(case)) for t in CCX_THREADS]
+
+
+def ccx_best(res):
+    """The fastest ccx setting of an alternate() result: (min wall, min peak MB, walls,
+    threads) and a text of every setting's runs."""
+    names = [n for n in res if n.startswith("ccx t")]
+    best = min(names, key=lambda n: res[n][0])
+    runs = "; ".join(f"{n[5:]} thread(s): " + " ".join(f"{w:.2f}" for w in res[n][2]) for n in names)
+    return res[best][0], min(res[n][1] for n in names), res[best][2], int(best[5:]), runs
+RUNS = []                          # every timed run, for calculix_runs.csv
+PHASES = []                        # vemcontact's phases of the fastest run per case
+CCX_EQ = {}                        # ccx's "number of equations" per case
+
+
+def commit():
+    r = subprocess.run(["git", "-C", str(ROOT), "log", "-1", "--format=%h"], stdout=subprocess.PIPE, text=True)
+    dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--untracked-files=no"],
+                           stdout=subprocess.PIPE, text=True).stdout.strip()
+    return r.stdout.strip() + ("+changes" if dirty else "")
+
+
+def timed(cmd, cwd, env=None, label=None):
+    """Run cmd under /usr/bin/time -f %M; return (wall s, peak MB, stdout).  With a
+    label (case, round, program) the run is also recorded for calculix_runs.csv."""
     tfile = pathlib.Path(cwd) / "time.txt"
-    r = subprocess.run(["/usr/bin/time", "-v", "-o", str(tfile)] + cmd, cwd=cwd, env=ENV,
+    load = os.getloadavg()[0]
+    t0 = time.perf_counter()
+    r = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", str(tfile)] + cmd, cwd=cwd,
+                       env=ENV_VC if env is None else env,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    wall = time.perf_counter() - t0
     if r.returncode != 0:
         sys.exit(f"failed ({r.returncode}): {' '.join(map(str, cmd))} in {cwd}\n{r.stdout[-3000:]}")
-    t = tfile.read_text()
-    m = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (\S+)", t)
-    parts = [float(x) for x in m.group(1).split(":")]
-    wall = sum(p * 60 ** i for i, p in enumerate(reversed(parts)))
-    rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", t).group(1)) / 1024
+    rss = int(tfile.read_text().split()[-1]) / 1024
+    if label:
+        RUNS.append(dict(case=label[0], round=label[1], program=label[2], wall_s=round(wall, 3),
+                         peak_MB=round(rss, 1), load1_before=round(load, 2),
+                         load1_after=round(os.getloadavg()[0], 2),
+                         utc=datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S")))
     return wall, rss, r.stdout
 
 
+def alternate(progs, rounds, case):
+    """Run the programs [(name, cmd, cwd, env, after)] one after the other, `rounds`
+    times; after(round) is called after each run (to read and remove its results).
+    Returns {name: (min wall, min peak MB, [walls])} and the loads seen."""
+    res = {name: [] for name, *_ in progs}
+    loads = []
+    for k in range(1, rounds + 1):
+        for name, cmd, cwd, env, after in progs:
+            wall, rss, out = timed(cmd, cwd, env, (case, k, name))
+            loads += [RUNS[-1]["load1_before"], RUNS[-1]["load1_after"]]
+            res[name].append((wall, rss))
+            if after:
+                after(k, wall, out)
+    return {n: (min(w for w, _ in v), min(m for _, m in v), [w for w, _ in v]) for n, v in res.items()}, loads
+
+
+def ccx_after(case):
+    def after(k, wall, out):
+        CCX_EQ[case] = ccx_equations(out)
+    return after
+
+
+def vc_run(case, name, outdir, deck):
+    """The vemcontact entry of alternate(): keeps the solver, the results of the first
+    run and the phases of the fastest run."""
+    best = {"wall": float("inf")}
+    job = pathlib.Path(deck).stem
+
+    def after(k, wall, out):
+        d = pathlib.Path(outdir)
+        with h5py.File(d / f"{job}.h5") as f:
+            best["solver"] = f.attrs["solver"].decode() if isinstance(f.attrs["solver"], bytes) else str(f.attrs["solver"])
+            if k == 1:
+                best["u"] = f["steps/0001/U"][...]
+                best["xy"] = f["mesh/coordinates"][...]
+                best["ids"] = f["mesh/node_ids"][...]
+        log = (d / f"{job}.log").read_text()
+        m = re.search(r"unknowns (\d+)", log)
+        best["unknowns_log"] = int(m.group(1)) if m else 0
+        if wall < best["wall"]:
+            best["wall"] = wall
+            with open(d / f"{job}_phases.csv") as f:
+                best["phases"] = [dict(case=case, program=name, **r) for r in csv.DictReader(f)]
+        shutil.rmtree(d)
+
+    return after, best
+
+
 def run_quiet(cmd, cwd):
-    r = subprocess.run(cmd, cwd=cwd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    r = subprocess.run(cmd, cwd=cwd, env=ENV_VC, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if r.returncode != 0:
         sys.exit(f"failed ({r.returncode}): {' '.join(map(str, cmd))}\n{r.stdout[-3000:]}")
     return r.stdout
@@ -98,16 +193,18 @@ def ccx_equations(out):
 
 
 # ---------------------------------------------------------------- linear cantilever
-def linear_case(n, work, residual):
+def linear_case(n, work, residual, rounds):
     d = work / f"cant{n}"
     run_quiet([PY, str(HERE / "make_cantilever.py"), str(n), str(d)], ROOT)
-    vc_wall, vc_rss, _ = timed([str(VC), "-q", "-o", "vc", "vc.inp"], d)
-    log = (d / "vc" / "vc.log").read_text()
-    with h5py.File(d / "vc" / "vc.h5") as f:
-        u = f["steps/0001/U"][...]
-        ids = f["mesh/node_ids"][...]
+    case = f"cpe4_{n}"
+    after, vc = vc_run(case, "vemcontact", d / "vc", d / "vc.inp")
+    res, loads = alternate([("vemcontact", [str(VC), "-q", "-o", "vc", "vc.inp"], d, ENV_VC, after)]
+                           + ccx_progs(d, case), rounds, case)
+    PHASES.extend(vc["phases"])
+    vc_wall, vc_rss, vc_walls = res["vemcontact"]
+    cx_wall, cx_rss, cx_walls, cx_t, cx_runs = ccx_best(res)
+    u, ids = vc["u"], vc["ids"]
     assert np.all(ids == np.arange(1, len(ids) + 1))
-    cx_wall, cx_rss, out = timed(["ccx", "ccx"], d)
     rows = dat_blocks(d / "ccx.dat", "displacements")
     uc = np.zeros_like(u)
     for k, v in rows:
@@ -117,13 +214,18 @@ def linear_case(n, work, residual):
     rel = diff.max() / umax
     big = np.abs(u) >= 1e-4 * umax          # near-zero components excluded (see the report)
     ulps = (diff[big] / half_ulp_e13_6(uc[big])).max()
+    tip = (n + 1) * (n // 2 + 1) - 1        # node at (L, L/2), 0-based
     row = dict(n=n, nodes=len(u), elements=n * n, unknowns=2 * len(u),
-               free_unknowns=2 * len(u) - 2 * (n + 1), ccx_equations=ccx_equations(out),
+               free_unknowns=2 * len(u) - 2 * (n + 1), ccx_equations=CCX_EQ.get(case, 0),
+               rounds=rounds, vc_solver=vc["solver"],
                vc_wall_s=round(vc_wall, 3), vc_peak_MB=round(vc_rss, 1),
-               vc_total_s=vc_log_value(log, "total"),
                ccx_wall_s=round(cx_wall, 3), ccx_peak_MB=round(cx_rss, 1),
                time_ratio=round(cx_wall / vc_wall, 2), memory_ratio=round(cx_rss / vc_rss, 2),
-               u_max=f"{umax:.6e}", max_abs_diff_rel=f"{rel:.3e}", diff_in_print_halfulps=f"{ulps:.3f}",
+               ccx_threads=cx_t,
+               vc_walls=" ".join(f"{w:.2f}" for w in vc_walls), ccx_walls=cx_runs,
+               load_min=min(loads), load_max=max(loads),
+               u_max=f"{umax:.6e}", tip_uy_vc=f"{u[tip, 1]:.7e}", tip_uy_ccx=f"{uc[tip, 1]:.7e}",
+               max_abs_diff_rel=f"{rel:.3e}", diff_in_print_halfulps=f"{ulps:.3f}",
                residual_rel="", du_rel="")
     if residual:
         np.save(d / "u.npy", u)
@@ -148,10 +250,68 @@ def linear_case(n, work, residual):
         loads = [f"{k + 1}, {j + 1}, {r[k, j]:.9e}" for k in range(len(u)) for j in (0, 1)
                  if free[k] and r[k, j] != 0.0]
         (d / "vc_du.inp").write_text(deck + "*CLOAD\n" + "\n".join(loads) + "\n*END STEP\n")
-        run_quiet([str(VC), "-q", "-o", "du", "vc_du.inp"], d)
+        run_quiet([str(VC), "-q", "--solver", "cholmod", "-o", "du", "vc_du.inp"], d)   # a check: direct
         with h5py.File(d / "du" / "vc_du.h5") as h:
             du = h["steps/0001/U"][...]
         row["du_rel"] = f"{np.abs(du).max() / umax:.3e}"
+    shutil.rmtree(d)
+    return row
+
+
+# ---------------------------------------------------------------- Voronoi cantilever
+def voronoi_case(cells, seed, lloyd, work, rounds):
+    """The peers' Timoshenko cantilever on `cells` Lloyd-Voronoi cells: vemcontact on the
+    polygons (VPE) and on the same nodes as CPE3 triangles, ccx on the triangles."""
+    sys.path.insert(0, str(HERE))
+    import make_voronoi as mv
+    d = work / f"voronoi{cells}"
+    t0 = time.perf_counter()
+    info = mv.write(d, cells, seed, lloyd)
+    t_mesh = time.perf_counter() - t0
+    case = f"voronoi_{cells}"
+    after_vpe, vpe = vc_run(case, "vemcontact VPE", d / "vpe", d / "vc_vpe.inp")
+    after_tri, tri = vc_run(case, "vemcontact CPE3", d / "cpe3", d / "vc_cpe3.inp")
+    res, loads = alternate([("vemcontact VPE", [str(VC), "-q", "-o", "vpe", "vc_vpe.inp"], d, ENV_VC, after_vpe)]
+                           + ccx_progs(d, case)
+                           + [("vemcontact CPE3", [str(VC), "-q", "-o", "cpe3", "vc_cpe3.inp"], d, ENV_VC, after_tri)],
+                           rounds, case)
+    cx_wall, cx_rss, _, cx_t, cx_runs = ccx_best(res)
+    res["ccx"] = (cx_wall, cx_rss, [])
+    PHASES.extend(vpe["phases"] + tri["phases"])
+    ids, xy = tri["ids"], tri["xy"]
+    pos = {int(k): i for i, k in enumerate(ids)}
+    uc = np.zeros_like(tri["u"])
+    for k, v in dat_blocks(d / "ccx.dat", "displacements"):
+        uc[pos[k]] = v[:2]
+    tip_vpe, err_vpe = mv.tip_from(vpe["xy"], vpe["u"])
+    tip_tri, err_tri = mv.tip_from(xy, tri["u"])
+    tip_ccx, err_ccx = mv.tip_from(xy, uc)
+    umax = np.abs(tri["u"]).max()
+    free = 2 * info["nodes"] - 2 * info["prescribed_nodes"]
+    w = {k: v[0] for k, v in res.items()}
+    m = {k: v[1] for k, v in res.items()}
+    row = dict(cells=info["cells"], seed=seed, lloyd=lloyd, nodes=info["nodes"], triangles=info["triangles"],
+               tri_angle_min_deg=info["tri_angle_min_deg"], tri_angle_max_deg=info["tri_angle_max_deg"],
+               tri_area_min=info["tri_area_min"], unknowns=2 * info["nodes"], free_unknowns=free,
+               ccx_equations=CCX_EQ.get(case, 0), rounds=rounds, mesh_s=round(t_mesh, 1),
+               vc_vpe_solver=vpe["solver"], vc_cpe3_solver=tri["solver"],
+               vc_vpe_wall_s=round(w["vemcontact VPE"], 3), vc_cpe3_wall_s=round(w["vemcontact CPE3"], 3),
+               ccx_wall_s=round(w["ccx"], 3),
+               vc_vpe_peak_MB=round(m["vemcontact VPE"], 1), vc_cpe3_peak_MB=round(m["vemcontact CPE3"], 1),
+               ccx_peak_MB=round(m["ccx"], 1),
+               time_ratio_vpe=round(w["ccx"] / w["vemcontact VPE"], 2),
+               memory_ratio_vpe=round(m["ccx"] / m["vemcontact VPE"], 2),
+               time_ratio_cpe3=round(w["ccx"] / w["vemcontact CPE3"], 2),
+               memory_ratio_cpe3=round(m["ccx"] / m["vemcontact CPE3"], 2),
+               vc_vpe_walls=" ".join(f"{x:.2f}" for x in res["vemcontact VPE"][2]),
+               vc_cpe3_walls=" ".join(f"{x:.2f}" for x in res["vemcontact CPE3"][2]),
+               ccx_threads=cx_t, ccx_walls=cx_runs,
+               load_min=min(loads), load_max=max(loads),
+               tip_exact=f"{mv.case.TIP_EXACT:.6e}",
+               tip_vc_vpe=f"{tip_vpe:.7e}", tip_rel_err_vc_vpe=f"{err_vpe:.3e}",
+               tip_vc_cpe3=f"{tip_tri:.7e}", tip_rel_err_vc_cpe3=f"{err_tri:.3e}",
+               tip_ccx=f"{tip_ccx:.7e}", tip_rel_err_ccx=f"{err_ccx:.3e}",
+               cpe3_vc_ccx_max_diff_rel=f"{np.abs(tri['u'] - uc).max() / umax:.3e}")
     shutil.rmtree(d)
     return row
 
@@ -187,11 +347,25 @@ def ccx_pressures(dat, nmax):
     return {k: 0.5 * (v[0] + v[1]) for k, v in p.items()}, layer
 
 
-def hertz_case(name, work):
+def hertz_case(name, work, rounds):
+    """vemcontact and ccx (small sliding) alternately `rounds` times (minimum of each),
+    then ccx once more without SMALL SLIDING (untimed in the ratios) up to 50 000 unknowns."""
     d = work / f"hertz_{name}"
     d.mkdir()
     deck = vc_hertz_deck(name, work)
-    vc_wall, vc_rss, _ = timed([str(VC), "-q", "-o", "vc", str(deck)], d)
+    vc_walls, vc_rsss, cx_runs = [], [], {t: [] for t in CCX_THREADS}
+    small = d / "small"
+    run_quiet([PY, str(HERE / "make_hertz.py"), str(deck), str(small)], ROOT)
+    for k in range(1, rounds + 1):
+        shutil.rmtree(d / "vc", ignore_errors=True)
+        w_, m_, _ = timed([str(VC), "-q", "-o", "vc", str(deck)], d, ENV_VC, (f"hertz_{name}", k, "vemcontact"))
+        vc_walls.append(w_)
+        vc_rsss.append(m_)
+        for t in CCX_THREADS:
+            w_, m_, o_small = timed(["ccx", "ccx"], small, env_ccx(t), (f"hertz_{name}_small", k, f"ccx t{t}"))
+            cx_runs[t].append((w_, m_))
+    vc_wall, vc_rss = min(vc_walls), min(vc_rsss)
+    cx_t = min(CCX_THREADS, key=lambda t: min(w_ for w_, _ in cx_runs[t]))
     job = deck.stem
     log = (d / "vc" / f"{job}.log").read_text()
     unknowns = int(re.search(r"unknowns (\d+)", log).group(1))
@@ -206,10 +380,16 @@ def hertz_case(name, work):
         variants.append(("finite", ["--finite-sliding"]))
     for variant, extra in variants:
         dd = d / variant
-        run_quiet([PY, str(HERE / "make_hertz.py"), str(deck), str(dd)] + extra, ROOT)
+        if not dd.exists():
+            run_quiet([PY, str(HERE / "make_hertz.py"), str(deck), str(dd)] + extra, ROOT)
         nmax = max(int(l.split(",")[0]) for l in (dd / "mesh.inp").read_text().split("*NODE")[1].splitlines()[1:]
                    if l and l[0].isdigit())
-        wall, rss, o = timed(["ccx", "ccx"], dd)
+        if variant == "small":
+            wall = min(w_ for w_, _ in cx_runs[cx_t])
+            rss = min(m_ for t in CCX_THREADS for _, m_ in cx_runs[t])
+            o = o_small
+        else:
+            wall, rss, o = timed(["ccx", "ccx"], dd, env_ccx(cx_t), (f"hertz_{name}_{variant}", 1, f"ccx t{cx_t}"))
         pc, layer = ccx_pressures(dd / "ccx.dat", nmax)
         incs = len(re.findall(r"^ increment \d+ attempt", o, re.M))
         its = len(re.findall(r"^ iteration \d+", o, re.M))
@@ -221,7 +401,7 @@ def hertz_case(name, work):
     dp = max(abs(pv.get(k, 0.0) - max(pc.get(k, 0.0), 0.0)) for k in nodes)
     closed_v = sum(1 for v in pv.values() if v > 0)
     closed_c = sum(1 for v in pc.values() if v > 1e-3)       # open springs carry -sigma_inf
-    row = dict(mesh=name, unknowns=unknowns, ccx_equations=neq, vc_iterations=iters,
+    row = dict(mesh=name, rounds=rounds, ccx_threads=cx_t, unknowns=unknowns, ccx_equations=neq, vc_iterations=iters,
                ccx_increments=incs, ccx_iterations=its,
                vc_wall_s=round(vc_wall, 3), vc_peak_MB=round(vc_rss, 1),
                ccx_wall_s=round(wall, 3), ccx_peak_MB=round(rss, 1),
@@ -250,7 +430,8 @@ def machine():
     vcv = subprocess.run([str(VC), "--version"], stdout=subprocess.PIPE, text=True).stdout.strip()
     return (f"{NPROC} cores ({cpu}), {mem:.0f} GiB, {platform.system()} {platform.release()}; "
             f"{vcv} (Release build), CalculiX ccx {ccxv} (Debian package calculix-ccx, SPOOLES solver); "
-            f"OMP_NUM_THREADS = OPENBLAS_NUM_THREADS = {NPROC} for both")
+            f"vemcontact with its defaults (one BLAS thread, `--solver auto`), ccx with OMP_NUM_THREADS = "
+            f"{' and '.join(map(str, CCX_THREADS))}, the faster of them per case")
 
 
 def write_csv(path, rows):
@@ -285,23 +466,94 @@ def fmt_int(v):
     return f"{v:,}".replace(",", " ")
 
 
-def report(lin, hz, mach, when, elapsed, path):
+def voronoi_report(w, vor):
+    w("## Voronoi cantilever: VEM polygons against CPE3 triangles")
+    w("")
+    w("The peers' Timoshenko cantilever (bench/peers/case.py; docs/performance.md, \"The")
+    w("peers' cantilever\"): x in [0, 8], y in [-2, 2], E = 1e7, nu = 0.3, plane strain,")
+    w("thickness 1, the parabolic end shear P = -1000 on x = 8 as consistent nodal loads, the")
+    w("exact displacement prescribed on x = 0, on a Lloyd-Voronoi mesh from vctools.mesh")
+    w("(uniform random seeds, 20 Lloyd iterations). Its exact tip deflection")
+    w("u_y(8, 0) = P L^3/(3 E' I) = -2.9120e-3 gives both codes' errors; the tip is")
+    w("interpolated linearly on the side of x = 8 that holds y = 0. Written by")
+    w("`bench/calculix/make_voronoi.py` three ways on the same nodes: vemcontact on the")
+    w("polygons (VPE, first-order VEM), and the same polygons split into CPE3 triangles, run")
+    w("by ccx and, like for like, by vemcontact (FEM constant-strain triangles). Each convex")
+    w("cell of k nodes becomes k - 2 triangles by a fan from one of its own vertices, the")
+    w("apex whose fan has the largest smallest angle: no node is added, so the triangles have")
+    w("the polygons' unknowns. Every triangle has positive area; their smallest angles are")
+    w("small where a Voronoi cell has a very short side (any triangulation of the cell has a")
+    w("triangle on that side), their largest angles stay those of the cells (below 150 deg).")
+    w("A fan from each cell's centroid would add one node per cell (1.5 x the unknowns).")
+    w("125 000 cells give the 500 x 500 case's unknowns (500 004 against 502 002); ccx's")
+    w("peak memory grows linearly with them on these meshes (docs/performance.md), so")
+    w("250 000 cells (1e6 unknowns) would need about 28 GB there, more than this machine has.")
+    w("")
+    w("| cells (seed) | nodes | triangles | angles of the triangles | unknowns | free (ccx equations) |")
+    w("|---:|---:|---:|---:|---:|---:|")
+    for r in vor:
+        w(f"| {fmt_int(r['cells'])} ({r['seed']}) | {fmt_int(r['nodes'])} | {fmt_int(r['triangles'])} | "
+          f"{r['tri_angle_min_deg']}-{r['tri_angle_max_deg']} deg | {fmt_int(r['unknowns'])} | "
+          f"{fmt_int(r['free_unknowns'])} ({fmt_int(r['ccx_equations'])}) |")
+    w("")
+    for r in vor:
+        w(f"Run {r.get('run', '?')}, {r['rounds']} alternating rounds (vemcontact VPE, ccx, vemcontact "
+          f"CPE3), load {r['load_min']}-{r['load_max']}; {fmt_int(r['cells'])} cells:")
+        w("")
+        w("| program, mesh | solver | wall (min) | every run | peak RSS | ccx / this: time | memory | tip u_y(8, 0) | relative tip error |")
+        w("|---|---|---:|---|---:|---:|---:|---:|---:|")
+        w(f"| vemcontact, VPE polygons | {r['vc_vpe_solver'].split(' ')[0]} | {r['vc_vpe_wall_s']:.2f} s | "
+          f"{r['vc_vpe_walls']} | {r['vc_vpe_peak_MB']:.0f} MB | **{r['time_ratio_vpe']:.1f}** | "
+          f"**{r['memory_ratio_vpe']:.1f}** | {r['tip_vc_vpe']} | {r['tip_rel_err_vc_vpe']} |")
+        w(f"| vemcontact, CPE3 triangles | {r['vc_cpe3_solver'].split(' ')[0]} | {r['vc_cpe3_wall_s']:.2f} s | "
+          f"{r['vc_cpe3_walls']} | {r['vc_cpe3_peak_MB']:.0f} MB | **{r['time_ratio_cpe3']:.1f}** | "
+          f"**{r['memory_ratio_cpe3']:.1f}** | {r['tip_vc_cpe3']} | {r['tip_rel_err_vc_cpe3']} |")
+        w(f"| ccx, CPE3 triangles | SPOOLES, {r.get('ccx_threads', '?')} thread(s) | {r['ccx_wall_s']:.2f} s | {r['ccx_walls']} | "
+          f"{r['ccx_peak_MB']:.0f} MB | 1 | 1 | {r['tip_ccx']} | {r['tip_rel_err_ccx']} |")
+        w("")
+        ok_t = r["time_ratio_vpe"] >= 5
+        ok_m = r["memory_ratio_vpe"] >= 5
+        w(f"Target (at least 5 x faster, at most 1/5 of the memory): vemcontact on the polygons "
+          f"against ccx on the triangles: {r['time_ratio_vpe']:.1f} x in time "
+          f"({'met' if ok_t else 'NOT met'}), 1/{r['memory_ratio_vpe']:.1f} of the memory "
+          f"({'met' if ok_m else 'NOT met'}); like for like on the triangles "
+          f"{r['time_ratio_cpe3']:.1f} x and 1/{r['memory_ratio_cpe3']:.1f}. The two codes' "
+          f"displacements on the triangles differ by at most {r['cpe3_vc_ccx_max_diff_rel']} of max abs U "
+          f"(ccx prints 7 digits): the same element. On the same nodes the VEM polygons' tip error is "
+          f"{float(r['tip_rel_err_vc_cpe3']) / float(r['tip_rel_err_vc_vpe']):.1f} x smaller than the "
+          f"constant-strain triangles'.")
+        w("")
+
+
+def report(lin, hz, vor, mach, when, elapsed, path):
     L = []
     w = L.append
-    w("# vemcontact against CalculiX on the same CPE4 decks")
+    w("# vemcontact against CalculiX on the same decks")
     w("")
-    w("Issue 6, part 4. Generated by `bash bench/calculix/run.sh` (one command: installs the")
-    w("Debian packages `calculix-ccx` and `time`, builds vemcontact in Release if needed, runs")
-    w("every case and rewrites this page). Raw numbers: `bench/results/calculix_linear.csv`,")
-    w("`bench/results/calculix_hertz.csv`; plot: `bench/calculix/figures/calculix_scaling.png`.")
-    w("Timings are benchmark output, not tests: each table is one run on a shared, noisy")
-    w("machine, and the ratios are taken within that run.")
+    w("Issue 6, part 4, and issue 15. Generated by `bash bench/calculix/run.sh` (one command:")
+    w("installs the Debian packages `calculix-ccx` and `time`, builds vemcontact in Release if")
+    w("needed, runs every case and rewrites this page; `compare.py --help` for a subset). Raw")
+    w("numbers: `bench/results/calculix_linear.csv`, `calculix_voronoi.csv`,")
+    w("`calculix_hertz.csv`, every timed run with its load in `calculix_runs.csv`, and")
+    w("vemcontact's phases (its `JOB_phases.csv`) of its fastest run of each cantilever case")
+    w("in `calculix_phases.csv`; plot: `bench/calculix/figures/calculix_scaling.png`.")
+    w("Timings are benchmark output, not tests: the machine is shared and noisy, so the")
+    w("ratios are taken within one run, each table names its run (UTC, commit) and the load.")
     w("")
-    w(f"**Machine:** {mach}. Run {when}, {elapsed:.0f} s in all.")
+    w(f"**Machine:** {mach}.")
     w("")
-    w("Wall time and peak memory are those of the whole process under `/usr/bin/time -v`")
-    w("(read the deck, assemble, factorize, solve, write the results): vemcontact writes")
-    w("VTU + HDF5 (+ contact CSV), ccx writes its `.dat` print of the requested nodes.")
+    w("Wall time is that of the whole process (read the deck, assemble, factorize or set up")
+    w("and solve, write the results), peak memory its maximum resident set size")
+    w("(`/usr/bin/time -f %M`); the load is the 1-minute load average before and after each")
+    w("run. vemcontact writes VTU + HDF5 (+ contact CSV), ccx its `.dat` print of the")
+    w("requested nodes. Threads: each program with its own documented setting, vemcontact")
+    w("with its defaults (one BLAS thread; `--solver auto`, whose choice the tables give from")
+    w("the HDF5 root attribute `solver`: CHOLMOD below 200 000 unknowns, CG + GAMG above),")
+    w("ccx with `OMP_NUM_THREADS` = 1 (its default: one thread unless `OMP_NUM_THREADS` or")
+    w(f"`CCX_NPROC_EQUATION_SOLVER` says more) and = {NPROC}, the number of cores, both in every round; the")
+    w("faster setting counts in the ratios (its thread count in brackets), and the tables")
+    w("list every run. The programs run alternately, `--rounds` times; the tables give the")
+    w("minimum of each.")
     w("\"Unknowns\" is 2 x the number of nodes of the 2D mesh, the same mesh for both codes.")
     w("")
     w("## Linear cantilever")
@@ -313,12 +565,16 @@ def report(lin, hz, mach, when, elapsed, path):
     w("measures the codes, not an ill-conditioned mesh. Both codes read the same")
     w("`mesh.inp` and the same model lines; the CalculiX deck adds only `*NODE PRINT, U`.")
     w("")
-    w("| n x n | unknowns | ccx equations | vemcontact | ccx | time ratio | vemcontact peak | ccx peak | memory ratio |")
-    w("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    w(f"Run {lin[0].get('run', '?')}, {lin[0].get('rounds', 1)} alternating rounds, load "
+      f"{min(r.get('load_min', 0) for r in lin)}-{max(r.get('load_max', 0) for r in lin)}.")
+    w("")
+    w("| n x n | unknowns | ccx equations | vemcontact (solver) | ccx (threads) | time ratio | vemcontact peak | ccx peak | memory ratio | load |")
+    w("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in lin:
-        w(f"| {r['n']} x {r['n']} | {fmt_int(r['unknowns'])} | {fmt_int(r['ccx_equations'])} | {r['vc_wall_s']:.2f} s | "
-          f"{r['ccx_wall_s']:.2f} s | **{r['time_ratio']:.1f}** | {r['vc_peak_MB']:.0f} MB | {r['ccx_peak_MB']:.0f} MB | "
-          f"**{r['memory_ratio']:.1f}** |")
+        w(f"| {r['n']} x {r['n']} | {fmt_int(r['unknowns'])} | {fmt_int(r['ccx_equations'])} | "
+          f"{r['vc_wall_s']:.2f} s ({r.get('vc_solver', '?').split(' ')[0]}) | "
+          f"{r['ccx_wall_s']:.2f} s ({r.get('ccx_threads', '?')}) | **{r['time_ratio']:.1f}** | {r['vc_peak_MB']:.0f} MB | {r['ccx_peak_MB']:.0f} MB | "
+          f"**{r['memory_ratio']:.1f}** | {r.get('load_min', '?')}-{r.get('load_max', '?')} |")
     big = lin[-1]
     ok_t = big["time_ratio"] >= 5
     ok_m = big["memory_ratio"] >= 5
@@ -326,15 +582,16 @@ def report(lin, hz, mach, when, elapsed, path):
     w(f"Target at equal unknowns: at least 5 times faster and at most one fifth of the memory. At")
     w(f"{big['n']} x {big['n']} ({fmt_int(big['unknowns'])} unknowns): ccx / vemcontact = "
       f"{big['time_ratio']:.1f} in time ({'met' if ok_t else 'NOT met'}) and {big['memory_ratio']:.1f} in "
-      f"memory ({'met' if ok_m else 'NOT met'}).")
+      f"memory ({'met' if ok_m else 'NOT met'}). Every run's wall time: vemcontact "
+      f"{big.get('vc_walls', '?')} s; ccx with {big.get('ccx_walls', '?')} s.")
     w("")
     w("### Agreement of the displacements")
     w("")
-    w("| n x n | max abs U | max abs(U_vc - U_ccx) / max abs U | same, in half-units of ccx's last printed digit | residual of U_vc in ccx | K^-1 residual / max abs U |")
-    w("|---|---:|---:|---:|---:|---:|")
+    w("| n x n | u_y(10, 5) vemcontact | u_y(10, 5) ccx | max abs U | max abs(U_vc - U_ccx) / max abs U | same, in half-units of ccx's last printed digit | residual of U_vc in ccx | K^-1 residual / max abs U |")
+    w("|---|---:|---:|---:|---:|---:|---:|---:|")
     for r in lin:
-        w(f"| {r['n']} x {r['n']} | {r['u_max']} | {r['max_abs_diff_rel']} | {r['diff_in_print_halfulps']} | "
-          f"{r['residual_rel'] or '-'} | {r['du_rel'] or '-'} |")
+        w(f"| {r['n']} x {r['n']} | {r.get('tip_uy_vc', '-')} | {r.get('tip_uy_ccx', '-')} | {r['u_max']} | "
+          f"{r['max_abs_diff_rel']} | {float(r['diff_in_print_halfulps']):.3f} | {r['residual_rel'] or '-'} | {r['du_rel'] or '-'} |")
     w("")
     w("ccx prints displacements with 7 significant digits (`e13.6`, in `.dat` and `.frd`")
     w("alike), so a direct comparison cannot go below about 5e-7 relative. The fourth column")
@@ -353,6 +610,11 @@ def report(lin, hz, mach, when, elapsed, path):
     w("The error of our solution grows with the condition number (about n^2), which is why")
     w("the largest mesh can exceed one half-unit slightly on its smallest components above")
     w("the 1e-4 cut-off: there half a printed unit is 5e-11 of max abs U, the size of K^-1 r.")
+    w("Above 200 000 unknowns vemcontact's default is CG + GAMG, so its displacements carry")
+    w("the iteration's error as well (true relative residual 1e-10, docs/performance.md); the")
+    w("K^-1 r check is solved with CHOLMOD (`--solver cholmod`), since it measures the")
+    w("residual, not the solver. The square has no closed-form solution; the tip deflection")
+    w("u_y(10, 5) of the two codes is given for reference.")
     w("")
     w("What ccx does with CPE4 (ccx 2.20 source, `elements.f`, `gen3delem.f`): every plane")
     w("element is expanded into a one-layer brick. CPE4 becomes C3D8 with full 2 x 2 x 2")
@@ -366,6 +628,8 @@ def report(lin, hz, mach, when, elapsed, path):
     w("numbers three expanded nodes per 2D node and uses two), eight-node bricks, and the")
     w("MPC bookkeeping.")
     w("")
+    if vor:
+        voronoi_report(w, vor)
     w("## Hertz contact")
     w("")
     w("The paper's Hertz half model (disc R = 10, E = 1e3, on a block, E = 1e6, nu = 0.3,")
@@ -377,6 +641,10 @@ def report(lin, hz, mach, when, elapsed, path):
     w("header lists every change: slave as element faces (same areas as vemcontact's node")
     w("surface), `PRESSURE-OVERCLOSURE=LINEAR` with K = 1e5, sigma_inf = 1e-5, c0 = 10,")
     w("`SMALL SLIDING`, one increment, `*CONTACT PRINT, CSTR`.")
+    w("")
+    w(f"Run {hz[0].get('run', '?')}: vemcontact and ccx alternately, {hz[0].get('rounds', 1)} rounds, the minimum of each,")
+    w("ccx with the faster of its thread settings (`ccx_threads` in the CSV); the run without")
+    w("SMALL SLIDING once.")
     w("")
     w("| mesh | unknowns | vemcontact (iterations) | ccx (increments / iterations) | time ratio | vemcontact peak | ccx peak | memory ratio |")
     w("|---|---:|---:|---:|---:|---:|---:|---:|")
@@ -426,34 +694,72 @@ def report(lin, hz, mach, when, elapsed, path):
     w("## Reproduce")
     w("")
     w("    bash bench/calculix/run.sh                   # everything, as above")
-    w("    bash bench/calculix/run.sh --sizes 50 100 --hertz 389 600   # a subset")
+    w("    bash bench/calculix/run.sh --sizes 50 100 --voronoi 10000 --hertz 389 600   # a subset")
+    w("    bash bench/calculix/run.sh --sizes --voronoi --hertz   # the page again from the CSVs")
     w("")
     w("The decks can be written on their own: `python bench/calculix/make_cantilever.py N DIR`")
     w("(`DIR/vc.inp`, `DIR/ccx.inp`, shared `DIR/mesh.inp`; run ccx as `ccx ccx` inside DIR)")
-    w("and `python bench/calculix/make_hertz.py inputs/hertz_389_fem.inp DIR`.")
+    w("and `python bench/calculix/make_hertz.py inputs/hertz_389_fem.inp DIR`;")
+    w("`python bench/calculix/make_voronoi.py DIR --cells 125000 --seed 1` writes the Voronoi")
+    w("decks (`DIR/vc_vpe.inp`, `DIR/vc_cpe3.inp`, `DIR/ccx.inp`).")
     path.write_text("\n".join(L) + "\n")
+
+
+def read_csv(path):
+    """Rows of an earlier run's CSV, numbers as numbers (e-notation fields stay text)."""
+    rows = []
+    if not path.exists():
+        return rows
+    with open(path) as f:
+        for r in csv.DictReader(f):
+            for k, v in r.items():
+                if v and "e" not in v.lower():
+                    try:
+                        r[k] = int(v)
+                    except ValueError:
+                        try:
+                            r[k] = float(v)
+                        except ValueError:
+                            pass
+            rows.append(r)
+    return rows
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--sizes", type=int, nargs="+", default=[50, 100, 200, 500])
-    ap.add_argument("--hertz", nargs="+", default=["389", "600", "1155", "h5k", "h20k", "h100k"])
+    ap.add_argument("--sizes", type=int, nargs="*", default=[50, 100, 200, 500])
+    ap.add_argument("--voronoi", type=int, nargs="*", default=[125000],
+                    help="Lloyd-Voronoi cells of the Voronoi cantilever (none: keep the last run's rows)")
+    ap.add_argument("--seed", type=int, default=1, help="seed of the Voronoi mesh's random points")
+    ap.add_argument("--lloyd", type=int, default=20, help="Lloyd iterations of the Voronoi mesh")
+    ap.add_argument("--hertz", nargs="*", default=["389", "600", "1155", "h5k", "h20k", "h100k"])
+    ap.add_argument("--rounds", type=int, default=2,
+                    help="alternating runs of each program on every case; the tables give the minimum")
+    ap.add_argument("--ccx-threads", type=int, nargs="+", default=CCX_THREADS,
+                    help="OMP_NUM_THREADS settings of ccx, each run every round; the fastest counts")
     ap.add_argument("--residual-max", type=int, default=500,
                     help="largest n for the residual check (one more untimed ccx run each)")
+    ap.add_argument("--no-report", action="store_true", help="write the CSVs only")
     a = ap.parse_args()
-    t0 = datetime.datetime.now()
+    CCX_THREADS[:] = a.ccx_threads
+    t0 = datetime.datetime.now(datetime.timezone.utc)
+    stamp = f"{t0:%Y-%m-%d %H:%M} UTC, {commit()}"
     work = pathlib.Path(tempfile.mkdtemp(prefix="vc_ccx_"))
-    lin, hz = [], []
+    lin, hz, vor = [], [], []
     try:
         for n in a.sizes:
-            r = linear_case(n, work, n <= a.residual_max)
-            print(f"cantilever {n}x{n}: vc {r['vc_wall_s']} s {r['vc_peak_MB']} MB, ccx {r['ccx_wall_s']} s "
-                  f"{r['ccx_peak_MB']} MB, ratios {r['time_ratio']} / {r['memory_ratio']}, "
-                  f"diff {r['max_abs_diff_rel']} ({r['diff_in_print_halfulps']} half-ulps), "
-                  f"residual {r['residual_rel']}, du {r['du_rel']}", flush=True)
+            r = linear_case(n, work, n <= a.residual_max, a.rounds)
+            print(f"cantilever {n}x{n}: vc ({r['vc_solver']}) {r['vc_walls']} s {r['vc_peak_MB']} MB, "
+                  f"ccx {r['ccx_walls']} s {r['ccx_peak_MB']} MB, ratios {r['time_ratio']} / {r['memory_ratio']}, "
+                  f"load {r['load_min']}-{r['load_max']}, diff {r['max_abs_diff_rel']} "
+                  f"({r['diff_in_print_halfulps']} half-ulps), residual {r['residual_rel']}, du {r['du_rel']}", flush=True)
             lin.append(r)
+        for cells in a.voronoi:
+            r = voronoi_case(cells, a.seed, a.lloyd, work, a.rounds)
+            print(f"voronoi {cells}: " + ", ".join(f"{k} {v}" for k, v in r.items()), flush=True)
+            vor.append(r)
         for name in a.hertz:
-            r = hertz_case(name, work)
+            r = hertz_case(name, work, a.rounds)
             print(f"hertz {name}: vc {r['vc_wall_s']} s {r['vc_peak_MB']} MB, ccx {r['ccx_wall_s']} s "
                   f"{r['ccx_peak_MB']} MB, ratios {r['time_ratio']} / {r['memory_ratio']}, peaks "
                   f"{r['peak_vc']} / {r['peak_ccx']} (finite sliding {r['peak_ccx_finite_sliding']})", flush=True)
@@ -461,18 +767,31 @@ def main():
     finally:
         shutil.rmtree(work, ignore_errors=True)
     mach = machine()
-    for r in lin + hz:
+    for r in lin + hz + vor:
+        r["run"] = stamp
         r["machine"] = mach
     res = ROOT / "bench" / "results"
     res.mkdir(parents=True, exist_ok=True)
-    if lin:
-        write_csv(res / "calculix_linear.csv", lin)
-    if hz:
-        write_csv(res / "calculix_hertz.csv", hz)
+    for name, rows in (("calculix_linear.csv", lin), ("calculix_hertz.csv", hz), ("calculix_voronoi.csv", vor)):
+        if rows:
+            write_csv(res / name, rows)
+    # every run and phase table: this run's rows replace those of the same cases
+    # (a Hertz case "hertz_X" owns "hertz_X_small" and "hertz_X_finite"), others are kept
+    for name, new in (("calculix_runs.csv", RUNS), ("calculix_phases.csv", PHASES)):
+        if new:
+            cases = {r["case"] for r in new}
+            old = [r for r in read_csv(res / name) if r["case"] not in cases
+                   and r["case"].rsplit("_", 1)[0] not in cases]
+            write_csv(res / name, old + [dict(run=stamp, **r) for r in new])
+    if a.no_report:
+        return
+    lin = lin or read_csv(res / "calculix_linear.csv")
+    hz = hz or read_csv(res / "calculix_hertz.csv")
+    vor = vor or read_csv(res / "calculix_voronoi.csv")
     if lin and hz:
         plot(lin, hz, HERE / "figures" / "calculix_scaling.png")
-        elapsed = (datetime.datetime.now() - t0).total_seconds()
-        report(lin, hz, mach, t0.strftime("%Y-%m-%d %H:%M"), elapsed, ROOT / "docs" / "calculix-comparison.md")
+        elapsed = (datetime.datetime.now(datetime.timezone.utc) - t0).total_seconds()
+        report(lin, hz, vor, mach, stamp, elapsed, ROOT / "docs" / "calculix-comparison.md")
     print("machine:", mach)
 
 

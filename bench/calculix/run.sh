@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# vemcontact against CalculiX on the same CPE4 decks (issue 6, part 4): linear
-# cantilever and Hertz contact, wall time, peak memory and agreement.  One command:
-#   bash bench/calculix/run.sh [--sizes N ...] [--hertz MESH ...] [--residual-max N]
+# vemcontact against CalculiX (issue 6, part 4; issue 15): the linear CPE4 cantilever,
+# the Voronoi cantilever (VEM polygons against the same mesh as CPE3 triangles) and
+# Hertz contact: wall time, peak memory, agreement and tip errors.  One command:
+#   bash bench/calculix/run.sh [--sizes N ...] [--voronoi CELLS ...] [--hertz MESH ...]
+#                              [--rounds R] [--residual-max N]   (compare.py --help)
 # installs calculix-ccx and time (Debian packages) if missing, builds vemcontact
-# Release if needed, and writes bench/results/calculix_{linear,hertz}.csv,
+# Release if needed, and writes bench/results/calculix_*.csv,
 # bench/calculix/figures/calculix_scaling.png and docs/calculix-comparison.md.
-# About 5 minutes on 2 cores; ccx needs about 8 GB at 500 x 500.
+# About 15 minutes on 2 cores; ccx needs about 8 GB at 500 x 500 CPE4 and about
+# 15 GB on the 125 000-cell Voronoi mesh as CPE3.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 if ! command -v ccx >/dev/null || ! [ -x /usr/bin/time ]; then
