@@ -12,9 +12,12 @@
 #   environment: CELLS (default 100000), SEED (1), LLOYD (20), REPEATS (3),
 #                VARIANTS (default "auto t1 t2 t1busy t2busy cholmod"),
 #                VC_BUILD (an existing Release build; default scripts/build.sh Release),
+#                REF_BIN (another vemcontact executable, e.g. an older commit's build:
+#                the variant `ref` runs it as `auto` runs this one),
 #                CSV (default bench/results/peers.csv)
 # e.g. VARIANTS="t1 gamg hypre mumps" CSV=bench/results/peers_solvers.csv bench/peers/run.sh
-# Writes $CSV (one line per run) and prints the fastest run of
+# Writes $CSV (one line per run; total_s is the logged total, wall_s the process's
+# wall time from /usr/bin/time, with the loading of the shared libraries) and prints the fastest run of
 # each variant.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -38,12 +41,12 @@ PYTHONPATH=$root/postprocess "$py" bench/peers/case.py deck "$work/case" --cells
 echo "mesh and deck: $(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b - a}') s ($cells cells, seed $seed, $lloyd Lloyd iterations)"
 
 phases="read validate pattern assemble analyze factorize solve system stresses estimate write"
-echo "variant,rep,cells,unknowns,$(echo $phases | sed 's/\([a-z-]*\)/\1_s/g; s/ /,/g'),other_s,total_s,user_s,sys_s,peak_MB,tip_uy,tip_exact,tip_err,tip_rel_err,load,solver" > "$csv"
+echo "variant,rep,cells,unknowns,$(echo $phases | sed 's/\([a-z-]*\)/\1_s/g; s/ /,/g'),other_s,total_s,user_s,sys_s,peak_MB,tip_uy,tip_exact,tip_err,tip_rel_err,load,solver,wall_s" > "$csv"
 for rep in $(seq "$reps"); do
   for v in $variants; do
     opts=()
     case $v in
-      auto) ;;
+      auto|ref) ;;
       t1|t1busy) opts=(--solver cholmod --blas-threads 1) ;;
       t2|t2busy) opts=(--solver cholmod --blas-threads 2) ;;
       cholmod) opts=(--solver cholmod --blas-threads 1 --ordering cholmod) ;;
@@ -57,8 +60,10 @@ for rep in $(seq "$reps"); do
     load=$(cut -d' ' -f1 /proc/loadavg)
     out=$work/r_$v
     rm -rf "$out"
+    exe=$build/vemcontact
+    if [ "$v" = ref ]; then exe=${REF_BIN:?the variant ref needs REF_BIN}; fi
     env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS -u GOTO_NUM_THREADS \
-      /usr/bin/time -f "%U %S %M" -o "$work/time.txt" "$build/vemcontact" -q "${opts[@]}" -o "$out" "$work/case/beam.inp"
+      /usr/bin/time -f "%U %S %M %e" -o "$work/time.txt" "$exe" -q "${opts[@]}" -o "$out" "$work/case/beam.inp"
     if [ -n "$busy_pid" ]; then kill "$busy_pid"; wait "$busy_pid" 2>/dev/null || true; busy_pid=""; fi
     tip=$("$py" bench/peers/case.py tip "$out/beam.h5")
     nodes=$("$py" -c "import h5py,sys; print(h5py.File(sys.argv[1])['mesh/coordinates'].shape[0])" "$out/beam.h5")
@@ -69,8 +74,8 @@ for rep in $(seq "$reps"); do
       END { n = split(list, p, " "); s = 0; out = ""
             for (i = 1; i <= n; i++) { out = out sprintf("%.4g,", t[p[i]]); s += t[p[i]] }
             printf "%s%.4g,%.4g", out, all - s, tot }' "$out/beam_phases.csv")
-    read -r user sys rss < "$work/time.txt"
-    echo "$v,$rep,$cells,$((2 * nodes)),$line,$user,$sys,$((rss / 1024)),$tip,$load,$solver" >> "$csv"
+    read -r user sys rss wall < "$work/time.txt"
+    echo "$v,$rep,$cells,$((2 * nodes)),$line,$user,$sys,$((rss / 1024)),$tip,$load,$solver,$wall" >> "$csv"
     echo "  $v rep $rep: total $(echo "$line" | awk -F, '{print $NF}') s, load $load"
   done
 done
@@ -81,8 +86,8 @@ best = {}
 for r in rows:
     if r["variant"] not in best or float(r["total_s"]) < float(best[r["variant"]]["total_s"]):
         best[r["variant"]] = r
-print("fastest of each variant (s): variant total analyze factorize write user sys peak_MB tip_rel_err load")
+print("fastest of each variant (s): variant total wall analyze factorize write user sys peak_MB tip_rel_err load")
 for v, r in best.items():
-    print(v, r["total_s"], r["analyze_s"], r["factorize_s"], r["write_s"], r["user_s"], r["sys_s"], r["peak_MB"],
+    print(v, r["total_s"], r["wall_s"], r["analyze_s"], r["factorize_s"], r["write_s"], r["user_s"], r["sys_s"], r["peak_MB"],
           r["tip_rel_err"], r["load"])
 PY

@@ -74,6 +74,7 @@ typedef struct {
     int set_up;           /* the KSP holds the operator of the last factorize */
     int64_t own_dofs;     /* rows of this process as vc_petsc_distribute asked; -1: an even split */
     int shares;           /* factorize gets this process's share of the matrix (vc_petsc_distribute) */
+    int shared_values;    /* the matrix stores its values in val (one process, no perm) */
     PetscInt iterations;  /* of the last solve */
     PetscReal rnorm;      /* residual norm of the last solve */
     char message[512];
@@ -262,6 +263,7 @@ static void free_objects(vc_petsc_t *h)
     h->pos_lower = NULL;
     h->val = NULL;
     h->set_up = 0;
+    h->shared_values = 0;
     h->n = 0;
     h->ncsc = 0;
 }
@@ -445,13 +447,25 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
         }
     }
 
-    CHECK(MatCreate(PETSC_COMM_WORLD, &h->a), "MatCreate", h->message);
-    CHECK(MatSetSizes(h->a, h->nloc, h->nloc, h->n, h->n), "MatSetSizes", h->message);
-    CHECK(MatSetType(h->a, MATAIJ), "MatSetType", h->message);
-    CHECK(MatSetBlockSize(h->a, 2), "MatSetBlockSize", h->message);
-    /* one of the two applies, by the matrix's type (one or several processes) */
-    CHECK(MatSeqAIJSetPreallocation(h->a, 0, d_nnz), "MatSeqAIJSetPreallocation", h->message);
-    CHECK(MatMPIAIJSetPreallocation(h->a, 0, d_nnz, 0, o_nnz), "MatMPIAIJSetPreallocation", h->message);
+    if (size == 1 && !has_perm) {
+        /* One process in the caller's numbering: the matrix is made on the handle's
+         * own CSR arrays (row_ptr, col_idx, val are its storage; rows sorted), so
+         * that vc_petsc_factorize only scatters the new values into val: no
+         * MatSetValues (0.27-0.42 s for the 1e7 entries of the peers' cantilever,
+         * docs/performance.md) and no second copy of the matrix. */
+        CHECK(MatCreateSeqAIJWithArrays(PETSC_COMM_WORLD, h->n, h->n, h->row_ptr, h->col_idx, h->val, &h->a),
+              "MatCreateSeqAIJWithArrays", h->message);
+        CHECK(MatSetBlockSize(h->a, 2), "MatSetBlockSize", h->message);
+        h->shared_values = 1;
+    } else {
+        CHECK(MatCreate(PETSC_COMM_WORLD, &h->a), "MatCreate", h->message);
+        CHECK(MatSetSizes(h->a, h->nloc, h->nloc, h->n, h->n), "MatSetSizes", h->message);
+        CHECK(MatSetType(h->a, MATAIJ), "MatSetType", h->message);
+        CHECK(MatSetBlockSize(h->a, 2), "MatSetBlockSize", h->message);
+        /* one of the two applies, by the matrix's type (one or several processes) */
+        CHECK(MatSeqAIJSetPreallocation(h->a, 0, d_nnz), "MatSeqAIJSetPreallocation", h->message);
+        CHECK(MatMPIAIJSetPreallocation(h->a, 0, d_nnz, 0, o_nnz), "MatMPIAIJSetPreallocation", h->message);
+    }
     CHECK(MatSetOption(h->a, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption", h->message);
     CHECK(MatSetOption(h->a, MAT_SPD, PETSC_TRUE), "MatSetOption", h->message);
     CHECK(MatSetOption(h->a, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption", h->message);
@@ -525,55 +539,63 @@ int vc_petsc_factorize(void *handle, int64_t n, const double *val, double rtol, 
         h->val[h->pos_upper[k]] = val[k];
         if (h->pos_lower[k] >= 0) h->val[h->pos_lower[k]] = val[k];
     }
-    if (h->shares) {
-        /* the shares are added: start from zero after an earlier assembly */
-        PetscBool assembled = PETSC_FALSE;
-        CHECK(MatAssembled(h->a, &assembled), "MatAssembled", h->message);
-        if (assembled) CHECK(MatZeroEntries(h->a), "MatZeroEntries", h->message);
-    }
-    for (r = 0; r < h->nloc; r++) {
-        PetscInt grow = h->rstart + r, i = h->perm[grow];
-        PetscInt len = h->row_ptr[i + 1] - h->row_ptr[i];
-        CHECK(MatSetValues(h->a, 1, &grow, len, h->pcol + h->lptr[r], h->val + h->row_ptr[i],
-                           h->shares ? ADD_VALUES : INSERT_VALUES),
-              "MatSetValues", h->message);
-    }
-    if (h->shares) {
-        /* this share's entries in the rows of the other processes: only its non-zeros
-         * (the rows its elements touch), sent by PETSc at assembly and added there */
-        PetscInt g, q, m, *cols = NULL;
-        PetscScalar *vals = NULL;
-        PetscInt maxlen = 0;
-        for (g = 0; g < h->n; g++)
-            if (h->row_ptr[g + 1] - h->row_ptr[g] > maxlen) maxlen = h->row_ptr[g + 1] - h->row_ptr[g];
-        cols = malloc((size_t)(maxlen > 0 ? maxlen : 1) * sizeof(PetscInt));
-        vals = malloc((size_t)(maxlen > 0 ? maxlen : 1) * sizeof(PetscScalar));
-        if (!cols || !vals) {
+    if (h->shared_values) {
+        /* val is the matrix's storage (vc_petsc_analyze); giving its array back
+         * marks the matrix as changed, so that the preconditioner is set up again */
+        PetscScalar *storage = NULL;
+        CHECK(MatSeqAIJGetArray(h->a, &storage), "MatSeqAIJGetArray", h->message);
+        CHECK(MatSeqAIJRestoreArray(h->a, &storage), "MatSeqAIJRestoreArray", h->message);
+    } else {
+        if (h->shares) {
+            /* the shares are added: start from zero after an earlier assembly */
+            PetscBool assembled = PETSC_FALSE;
+            CHECK(MatAssembled(h->a, &assembled), "MatAssembled", h->message);
+            if (assembled) CHECK(MatZeroEntries(h->a), "MatZeroEntries", h->message);
+        }
+        for (r = 0; r < h->nloc; r++) {
+            PetscInt grow = h->rstart + r, i = h->perm[grow];
+            PetscInt len = h->row_ptr[i + 1] - h->row_ptr[i];
+            CHECK(MatSetValues(h->a, 1, &grow, len, h->pcol + h->lptr[r], h->val + h->row_ptr[i],
+                               h->shares ? ADD_VALUES : INSERT_VALUES),
+                  "MatSetValues", h->message);
+        }
+        if (h->shares) {
+            /* this share's entries in the rows of the other processes: only its non-zeros
+             * (the rows its elements touch), sent by PETSc at assembly and added there */
+            PetscInt g, q, m, *cols = NULL;
+            PetscScalar *vals = NULL;
+            PetscInt maxlen = 0;
+            for (g = 0; g < h->n; g++)
+                if (h->row_ptr[g + 1] - h->row_ptr[g] > maxlen) maxlen = h->row_ptr[g + 1] - h->row_ptr[g];
+            cols = malloc((size_t)(maxlen > 0 ? maxlen : 1) * sizeof(PetscInt));
+            vals = malloc((size_t)(maxlen > 0 ? maxlen : 1) * sizeof(PetscScalar));
+            if (!cols || !vals) {
+                free(cols);
+                free(vals);
+                st = VC_PETSC_NOMEM;
+                goto done;
+            }
+            for (g = 0; g < h->n && st == VC_PETSC_OK; g++) {
+                PetscInt i = h->perm[g];
+                if (g >= h->rstart && g < h->rstart + h->nloc) continue;
+                m = 0;
+                for (q = h->row_ptr[i]; q < h->row_ptr[i + 1]; q++) {
+                    if (h->val[q] == 0.0) continue;
+                    cols[m] = h->iperm[h->col_idx[q]];
+                    vals[m++] = h->val[q];
+                }
+                if (m > 0) {
+                    PetscErrorCode ierr = MatSetValues(h->a, 1, &g, m, cols, vals, ADD_VALUES);
+                    if (ierr) st = fail(ierr, "MatSetValues", h->message);
+                }
+            }
             free(cols);
             free(vals);
-            st = VC_PETSC_NOMEM;
-            goto done;
+            if (st != VC_PETSC_OK) goto done;
         }
-        for (g = 0; g < h->n && st == VC_PETSC_OK; g++) {
-            PetscInt i = h->perm[g];
-            if (g >= h->rstart && g < h->rstart + h->nloc) continue;
-            m = 0;
-            for (q = h->row_ptr[i]; q < h->row_ptr[i + 1]; q++) {
-                if (h->val[q] == 0.0) continue;
-                cols[m] = h->iperm[h->col_idx[q]];
-                vals[m++] = h->val[q];
-            }
-            if (m > 0) {
-                PetscErrorCode ierr = MatSetValues(h->a, 1, &g, m, cols, vals, ADD_VALUES);
-                if (ierr) st = fail(ierr, "MatSetValues", h->message);
-            }
-        }
-        free(cols);
-        free(vals);
-        if (st != VC_PETSC_OK) goto done;
+        CHECK(MatAssemblyBegin(h->a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin", h->message);
+        CHECK(MatAssemblyEnd(h->a, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd", h->message);
     }
-    CHECK(MatAssemblyBegin(h->a, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin", h->message);
-    CHECK(MatAssemblyEnd(h->a, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd", h->message);
     CHECK(KSPSetOperators(h->ksp, h->a, h->a), "KSPSetOperators", h->message);
     CHECK(KSPSetTolerances(h->ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, maxit), "KSPSetTolerances", h->message);
     /* the user's PETSc options (-ksp_rtol, -pc_gamg_threshold, ...) override the defaults */
