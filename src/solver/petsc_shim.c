@@ -311,6 +311,7 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
     PetscInt *d_nnz = NULL, *o_nnz = NULL, r;
     PetscMPIInt size = 1, rank = 0;
     int64_t nn, base, rem, lnodes, snode;
+    int own_storage = 0;
 
     *info = 0;
     if (!h) return VC_PETSC_ORDER;
@@ -424,30 +425,35 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
         }
         h->iperm[h->perm[k]] = (PetscInt)k;
     }
-    /* this process's rows: their columns in PETSc's numbering, in and off its block */
+    /* this process's rows: their columns in PETSc's numbering, in and off its block
+     * (for MatSetValues and the preallocation; one process in the caller's numbering
+     * hands its CSR arrays to PETSc instead, below, and needs neither) */
+    own_storage = size == 1 && !has_perm;
     h->lptr[0] = 0;
-    for (r = 0; r < h->nloc; r++) {
-        PetscInt i = h->perm[h->rstart + r];
-        h->lptr[r + 1] = h->lptr[r] + (h->row_ptr[i + 1] - h->row_ptr[i]);
-    }
-    h->pcol = malloc((size_t)(h->lptr[h->nloc] > 0 ? h->lptr[h->nloc] : 1) * sizeof(PetscInt));
-    if (!h->pcol) {
-        st = VC_PETSC_NOMEM;
-        goto done;
-    }
-    for (r = 0; r < h->nloc; r++) {
-        PetscInt i = h->perm[h->rstart + r], q;
-        for (q = h->row_ptr[i]; q < h->row_ptr[i + 1]; q++) {
-            PetscInt c = h->iperm[h->col_idx[q]];
-            h->pcol[h->lptr[r] + (q - h->row_ptr[i])] = c;
-            if (c >= h->rstart && c < h->rstart + h->nloc)
-                d_nnz[r]++;
-            else
-                o_nnz[r]++;
+    if (!own_storage) {
+        for (r = 0; r < h->nloc; r++) {
+            PetscInt i = h->perm[h->rstart + r];
+            h->lptr[r + 1] = h->lptr[r] + (h->row_ptr[i + 1] - h->row_ptr[i]);
+        }
+        h->pcol = malloc((size_t)(h->lptr[h->nloc] > 0 ? h->lptr[h->nloc] : 1) * sizeof(PetscInt));
+        if (!h->pcol) {
+            st = VC_PETSC_NOMEM;
+            goto done;
+        }
+        for (r = 0; r < h->nloc; r++) {
+            PetscInt i = h->perm[h->rstart + r], q;
+            for (q = h->row_ptr[i]; q < h->row_ptr[i + 1]; q++) {
+                PetscInt c = h->iperm[h->col_idx[q]];
+                h->pcol[h->lptr[r] + (q - h->row_ptr[i])] = c;
+                if (c >= h->rstart && c < h->rstart + h->nloc)
+                    d_nnz[r]++;
+                else
+                    o_nnz[r]++;
+            }
         }
     }
 
-    if (size == 1 && !has_perm) {
+    if (own_storage) {
         /* One process in the caller's numbering: the matrix is made on the handle's
          * own CSR arrays (row_ptr, col_idx, val are its storage; rows sorted), so
          * that vc_petsc_factorize only scatters the new values into val: no
