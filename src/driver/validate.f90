@@ -50,6 +50,7 @@ contains
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: error
       real(wp), allocatable :: xy(:, :)
+      real(wp) :: h
       integer :: e, n, nerr, i, j, nc
       integer(ip) :: first
       character(len=:), allocatable :: what
@@ -94,7 +95,8 @@ contains
                nc = n/element_order(model%elem_type(e))
                if (len(what) == 0) then
                   xy(:, :n) = model%x(:, conn)
-                  if (polygon_diameter(xy(:, :nc)) < size_min .and. polygon_diameter(xy(:, :nc)) > 0.0_wp) then
+                  h = polygon_diameter(xy(:, :nc))
+                  if (h < size_min .and. h > 0.0_wp) then
                      what = 'is smaller than 1e-130 (its diameter): choose a length unit '// &
                             'that brings it into range'
                   else

@@ -76,7 +76,28 @@ contains
    pure function polygon_diameter(xy) result(h)
       real(wp), intent(in) :: xy(:, :)
       real(wp) :: h
-      integer :: i, j
+      real(wp) :: d2, best
+      integer :: i, j, bi, bj
+      ! the farthest pair by squared distances (no square roots), then its hypot; the
+      ! squares pick the right pair unless the largest overflows or is subnormal, when
+      ! the hypot of every pair decides
+      best = -1.0_wp
+      bi = 1
+      bj = 1
+      do j = 2, size(xy, 2)
+         do i = 1, j - 1
+            d2 = (xy(1, j) - xy(1, i))**2 + (xy(2, j) - xy(2, i))**2
+            if (d2 > best) then
+               best = d2
+               bi = i
+               bj = j
+            end if
+         end do
+      end do
+      if (best >= tiny(1.0_wp) .and. best <= huge(1.0_wp)) then
+         h = hypot(xy(1, bj) - xy(1, bi), xy(2, bj) - xy(2, bi))
+         return
+      end if
       h = 0.0_wp
       do j = 2, size(xy, 2)
          do i = 1, j - 1
@@ -109,8 +130,12 @@ contains
       real(wp), intent(in) :: xy(:, :)
       integer, intent(out) :: kind, i, j
       real(wp), intent(out) :: dist
-      real(wp) :: h, tol
-      integer :: n, ip1, jp1, im1
+      ! the vertices relative to the first and in units of the diameter: every
+      ! coordinate within [-1, 1], so squared distances neither overflow nor lose the
+      ! tolerance (geom_rtol^2 = 1e-20) to underflow, and no square root is needed
+      real(wp) :: xs(2, size(xy, 2))
+      real(wp) :: h, tol2, d2
+      integer :: n, ip1, jp1, im1, k
       n = size(xy, 2)
       kind = defect_few
       i = 0
@@ -119,12 +144,18 @@ contains
       if (n < 3) return
       h = polygon_diameter(xy)
       if (h <= 0.0_wp) return
-      tol = geom_rtol*h
+      tol2 = geom_rtol**2
+      do k = 1, n
+         xs(:, k) = (xy(:, k) - xy(:, 1))/h
+      end do
       kind = defect_coincident
       do j = 2, n
          do i = 1, j - 1
-            dist = norm2(xy(:, j) - xy(:, i))
-            if (dist <= tol) return
+            d2 = (xs(1, j) - xs(1, i))**2 + (xs(2, j) - xs(2, i))**2
+            if (d2 <= tol2) then
+               dist = h*sqrt(d2)
+               return
+            end if
          end do
       end do
       ! a side folds back on its predecessor exactly when the far end of the
@@ -134,10 +165,12 @@ contains
       do i = 1, n
          im1 = modulo(i - 2, n) + 1
          ip1 = modulo(i, n) + 1
-         dist = point_segment_distance(xy(:, ip1), xy(:, im1), xy(:, i))
-         if (dist <= tol) return
-         dist = point_segment_distance(xy(:, im1), xy(:, i), xy(:, ip1))
-         if (dist <= tol) return
+         d2 = min(point_segment_distance2(xs(:, ip1), xs(:, im1), xs(:, i)), &
+                  point_segment_distance2(xs(:, im1), xs(:, i), xs(:, ip1)))
+         if (d2 <= tol2) then
+            dist = h*sqrt(d2)
+            return
+         end if
       end do
       kind = defect_crossing
       do i = 1, n - 2
@@ -145,8 +178,11 @@ contains
          do j = i + 2, n
             if (i == 1 .and. j == n) cycle   ! sides n and 1 are adjacent
             jp1 = modulo(j, n) + 1
-            dist = segment_distance(xy(:, i), xy(:, ip1), xy(:, j), xy(:, jp1))
-            if (dist <= tol) return
+            d2 = segment_distance2(xs(:, i), xs(:, ip1), xs(:, j), xs(:, jp1))
+            if (d2 <= tol2) then
+               dist = h*sqrt(d2)
+               return
+            end if
          end do
       end do
       kind = defect_none
@@ -211,23 +247,25 @@ contains
       c = a(1)*b(2) - a(2)*b(1)
    end function cross2
 
-   !> Distance from p to the segment [a, b].
-   pure function point_segment_distance(p, a, b) result(dist)
+   !> Squared distance from p to the segment [a, b] (of coordinates whose squares
+   !> neither overflow nor underflow: polygon_defect's scaled ones).
+   pure function point_segment_distance2(p, a, b) result(d2)
       real(wp), intent(in) :: p(2), a(2), b(2)
-      real(wp) :: dist
-      real(wp) :: e(2), ee, t
+      real(wp) :: d2
+      real(wp) :: e(2), ee, t, r(2)
       e = b - a
-      ee = dot_product(e, e)
+      ee = e(1)**2 + e(2)**2
       t = 0.0_wp
       if (ee > 0.0_wp) t = min(1.0_wp, max(0.0_wp, dot_product(p - a, e)/ee))
-      dist = norm2(p - (a + t*e))
-   end function point_segment_distance
+      r = p - (a + t*e)
+      d2 = r(1)**2 + r(2)**2
+   end function point_segment_distance2
 
-   !> Distance between the segments [a, b] and [c, d]: zero when they cross,
-   !> otherwise attained at an end point of one of them.
-   pure function segment_distance(a, b, c, d) result(dist)
+   !> Squared distance between the segments [a, b] and [c, d]: zero when they
+   !> cross, otherwise attained at an end point of one of them.
+   pure function segment_distance2(a, b, c, d) result(d2)
       real(wp), intent(in) :: a(2), b(2), c(2), d(2)
-      real(wp) :: dist
+      real(wp) :: d2
       real(wp) :: o1, o2, o3, o4
       o1 = cross2(b - a, c - a)
       o2 = cross2(b - a, d - a)
@@ -235,10 +273,10 @@ contains
       o4 = cross2(d - c, b - c)
       if (((o1 > 0.0_wp .and. o2 < 0.0_wp) .or. (o1 < 0.0_wp .and. o2 > 0.0_wp)) .and. &
           ((o3 > 0.0_wp .and. o4 < 0.0_wp) .or. (o3 < 0.0_wp .and. o4 > 0.0_wp))) then
-         dist = 0.0_wp
+         d2 = 0.0_wp
          return
       end if
-      dist = min(point_segment_distance(a, c, d), point_segment_distance(b, c, d), &
-                 point_segment_distance(c, a, b), point_segment_distance(d, a, b))
-   end function segment_distance
+      d2 = min(point_segment_distance2(a, c, d), point_segment_distance2(b, c, d), &
+               point_segment_distance2(c, a, b), point_segment_distance2(d, a, b))
+   end function segment_distance2
 end module vemcontact_element_geometry
