@@ -36,11 +36,11 @@ program vemcontact_main
    logical :: solver_chosen
    !> the solver was chosen by `auto` (choose_solver)
    logical :: auto_chosen = .false.
-   !> Whether an error now is met by every process alike (reading the deck and choosing
-   !> the solver: the same on all): then rank 0 reports it and all end normally; any
-   !> other error may be one process's alone (rank 0's lock, log and files, a failed
-   !> allocation, ...) and ends all of them (MPI_Abort).
-   logical :: collective_phase = .false.
+   !> Whether an error now is met by every process alike (the command line, reading the
+   !> deck and choosing the solver: the same on all): then rank 0 reports it and all end
+   !> normally; any other error may be one process's alone (rank 0's lock, log and
+   !> files, the analysis, ...) and ends all of them (MPI_Abort).
+   logical :: collective_phase = .true.
    character(len=:), allocatable :: job, note
    character(len=16) :: buf
 
@@ -77,6 +77,8 @@ program vemcontact_main
          rank = petsc_rank()
       end if
    end if
+   ! rank 0's files: their errors are its own
+   collective_phase = .false.
    if (rank == 0) then
       call make_directory(cli%out_dir, error)
       if (allocated(error)) call fail(error)
