@@ -78,23 +78,28 @@ contains
       real(wp) :: h
       real(wp) :: d2, best
       integer :: i, j, bi, bj
-      ! the farthest pair by squared distances (no square roots), then its hypot; the
-      ! squares pick the right pair unless the largest overflows or is subnormal, when
-      ! the hypot of every pair decides
+      ! the farthest pair by squared distances (no square roots), then its hypot; where
+      ! a square could overflow (a coordinate beyond 1e150) or the largest is
+      ! subnormal, the hypot of every pair decides
       best = -1.0_wp
       bi = 1
       bj = 1
-      do j = 2, size(xy, 2)
-         do i = 1, j - 1
-            d2 = (xy(1, j) - xy(1, i))**2 + (xy(2, j) - xy(2, i))**2
-            if (d2 > best) then
-               best = d2
-               bi = i
-               bj = j
-            end if
+      if (size(xy, 2) > 1) then
+         if (maxval(abs(xy)) > 1.0e150_wp) best = huge(1.0_wp)
+      end if
+      if (best < 0.0_wp) then
+         do j = 2, size(xy, 2)
+            do i = 1, j - 1
+               d2 = (xy(1, j) - xy(1, i))**2 + (xy(2, j) - xy(2, i))**2
+               if (d2 > best) then
+                  best = d2
+                  bi = i
+                  bj = j
+               end if
+            end do
          end do
-      end do
-      if (best >= tiny(1.0_wp) .and. best <= huge(1.0_wp)) then
+      end if
+      if (best >= tiny(1.0_wp) .and. best < huge(1.0_wp)) then
          h = hypot(xy(1, bj) - xy(1, bi), xy(2, bj) - xy(2, bi))
          return
       end if

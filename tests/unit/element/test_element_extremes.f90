@@ -16,7 +16,8 @@ program test_element_extremes
    use vemcontact_model, only: model_t, string_t, plane_strain, form_vem, form_fem
    use vemcontact_material_elastic, only: elastic_matrix
    use vemcontact_element, only: element_workspace_size, element_stiffness
-   use vemcontact_element_geometry, only: polygon_defect, defect_coincident, defect_none
+   use vemcontact_element_geometry, only: polygon_defect, polygon_diameter, defect_coincident, defect_none, &
+      defect_crossing
    use vemcontact_driver_linear, only: linear_system_t, ordering_auto
    use vemcontact_driver_load_state, only: load_state_t
    use vemcontact_driver_validate, only: validate_elements, element_warnings
@@ -38,6 +39,7 @@ program test_element_extremes
    call locking()
    call nonconvex_cells()
    call short_sides()
+   call defect_scales()
    call messages()
    call t%finish()
 
@@ -295,6 +297,35 @@ contains
       call polygon_defect(hexagon(1.0e-9_wp), kind, i, j, dist)
       call t%equal(kind, defect_none, 'side of 1e-9 accepted')
    end subroutine short_sides
+
+   !> polygon_defect and polygon_diameter work with squared distances (polygon_defect on
+   !> coordinates scaled by the diameter): their answers must not depend on the scale or
+   !> the position, also where the unscaled squares would overflow (1e160) or be
+   !> subnormal (1e-160), beyond the range validate_elements admits.
+   subroutine defect_scales()
+      real(wp), parameter :: scales(5) = [1.0e-160_wp, 1.0e-100_wp, 1.0_wp, 1.0e100_wp, 1.0e160_wp]
+      real(wp) :: bow(2, 4), dist, s, off(2)
+      integer :: k, kind, i, j
+      character(len=16) :: lab
+      ! a bow tie: sides 1-2 and 3-4 cross
+      bow = reshape([0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 4])
+      do k = 1, size(scales)
+         s = scales(k)
+         ! off the origin by 1e3 diameters: the defects are relative to the diameter
+         off = [1.0e3_wp, -2.0e3_wp]*s
+         write (lab, '(es8.1)') s
+         ! the diameter of the hexagon of circumradius s is 2 s (to rounding: 4 ulps)
+         call t%check(abs(polygon_diameter(s*hexagon(0.5_wp)) - 2*s) <= 4*epsilon(1.0_wp)*2*s, &
+                      'diameter at scale '//trim(lab))
+         call polygon_defect(s*hexagon(1.0e-11_wp) + spread(off, 2, 6), kind, i, j, dist)
+         call t%check(kind == defect_coincident .and. i == 1 .and. j == 2 .and. dist > 0.0_wp .and. &
+                      dist <= 1.0e-10_wp*2*s, 'side of 1e-11 coincident at scale '//trim(lab))
+         call polygon_defect(s*hexagon(1.0e-9_wp) + spread(off, 2, 6), kind, i, j, dist)
+         call t%equal(kind, defect_none, 'side of 1e-9 accepted at scale '//trim(lab))
+         call polygon_defect(s*bow + spread(off, 2, 4), kind, i, j, dist)
+         call t%check(kind == defect_crossing .and. i == 1 .and. j == 3, 'bow tie crossing at scale '//trim(lab))
+      end do
+   end subroutine defect_scales
 
    ! ------------------------------------------------------------------ messages
    !> Error text of validate_elements on a one-formulation model, '' when none.
