@@ -7,12 +7,12 @@
 !> 4 solver failure, 5 internal error.
 program vemcontact_main
    use vemcontact_kinds, only: wp, i8
-   use vemcontact_error, only: error_t, fatal_error, err_input
+   use vemcontact_error, only: error_t, fatal_error, err_input, err_model
    use vemcontact_model, only: model_t, plane_strain
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
-   use vemcontact_app_process, only: exit_process, make_directory
+   use vemcontact_app_process, only: exit_process, make_directory, pause_seconds
    use vemcontact_safe_file, only: job_lock_t, lock_job, remove_job_files
    use vemcontact_text, only: escape_controls
    use vemcontact_deck_reader, only: read_deck
@@ -41,6 +41,9 @@ program vemcontact_main
    !> normally; any other error may be one process's alone (rank 0's lock, log and
    !> files, the analysis, ...) and ends all of them (MPI_Abort).
    logical :: collective_phase = .true.
+   !> Seconds a process other than rank 0 waits before it reports a model or input error
+   !> itself (fail): rank 0, meeting the same error, normally ends the run before.
+   integer, parameter :: rank0_grace_s = 3
    character(len=:), allocatable :: job, note
    character(len=16) :: buf
 
@@ -204,10 +207,16 @@ contains
    !> Report the error on stderr and in the log, then end with its status.  With
    !> several MPI processes an error of the collective phase is reported by rank 0
    !> alone; a later one by the process that met it, which then ends all of them.
+   !> A later error of the model or the input (a floating part, a bad element) is met
+   !> by every process at the same point, as all hold the same model: a process other
+   !> than rank 0 waits a moment first, so that rank 0 reports it without the prefix
+   !> and ends the run; it reports the error itself only if that does not happen.
    subroutine fail(err)
       type(error_t), intent(in) :: err
       integer :: r
       r = petsc_rank()
+      if (r > 0 .and. .not. collective_phase .and. (err%code == err_input .or. err%code == err_model)) &
+         call pause_seconds(rank0_grace_s)
       if (r == 0) then
          write (error_unit, '(a)') escape_controls(err%message)
       else if (.not. collective_phase) then

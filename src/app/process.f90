@@ -6,13 +6,18 @@ module vemcontact_app_process
    implicit none
    private
 
-   public :: exit_process, make_directory
+   public :: exit_process, make_directory, pause_seconds
 
    interface
       subroutine c_exit(status) bind(C, name='exit')
          import :: c_int
          integer(c_int), value :: status
       end subroutine c_exit
+      function c_sleep(seconds) result(left) bind(C, name='sleep')
+         import :: c_int
+         integer(c_int), value :: seconds
+         integer(c_int) :: left
+      end function c_sleep
       function c_mkdir(path, mode) result(rc) bind(C, name='mkdir')
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -30,6 +35,13 @@ contains
       flush (0)
       call c_exit(int(status, c_int))
    end subroutine exit_process
+
+   !> Wait `seconds` (or until a signal ends the process).
+   subroutine pause_seconds(seconds)
+      integer, intent(in) :: seconds
+      integer(c_int) :: left
+      left = c_sleep(int(seconds, c_int))
+   end subroutine pause_seconds
 
    !> Create a folder and its parents (like mkdir -p); existing folders are fine.
    subroutine make_directory(path, error)

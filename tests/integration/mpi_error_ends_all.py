@@ -1,6 +1,8 @@
-"""An error met by one MPI process alone ends every process of the run.
+"""An error met by one MPI process alone ends every process of the run, and an error
+of the model that every process meets is reported once.
 
     usage: mpi_error_ends_all.py LAUNCHER EXE OUTDIR DECK
+           mpi_error_ends_all.py --model-error LAUNCHER EXE OUTDIR FLOATING_DECK
 
 Only rank 0 takes the job's lock (JOB.lock, flock): with the lock held by this
 script, rank 0 stops with exit status 2 ("another vemcontact run is writing these
@@ -8,6 +10,11 @@ results") while the other ranks, which do not touch the lock, go on to the
 solver's collective operations.  Unless rank 0 ends them all (MPI_Abort), they wait
 for it forever.  Asserted: the launcher returns within the time limit with status 2,
 the message names the lock, and the results folder holds no result file.
+
+With --model-error the deck has a floating part (exit status 3), an error every
+process meets during the analysis, after the collective phase: asserted are the
+status, the launcher's return within the time limit, and the message on stderr
+exactly once, from rank 0 (no "MPI rank N:" prefix).
 """
 from __future__ import annotations
 
@@ -21,7 +28,28 @@ import sys
 LIMIT_S = 60.0
 
 
+def model_error(launcher: str, exe: str, outdir: str, deck: str) -> int:
+    cmd = shlex.split(launcher) + [exe, "-q", "--solver", "gamg", "-o", outdir, deck]
+    try:
+        run = subprocess.run(cmd, check=False, capture_output=True, text=True, timeout=LIMIT_S)
+    except subprocess.TimeoutExpired:
+        print(f"FAIL: the processes still ran after {LIMIT_S} s")
+        return 1
+    ok = run.returncode == 3
+    if not ok:
+        print(f"FAIL: exit status {run.returncode}, expected 3 (model not solvable)\n{run.stderr}")
+    count = run.stderr.count("the model is not held")
+    if count != 1 or "MPI rank" in run.stderr:
+        print(f"FAIL: the message {count} times (expected once, from rank 0):\n{run.stderr}")
+        ok = False
+    if ok:
+        print("ok: exit status 3, the message once, from rank 0")
+    return 0 if ok else 1
+
+
 def main() -> int:
+    if sys.argv[1] == "--model-error":
+        return model_error(*sys.argv[2:6])
     launcher, exe, outdir, deck = sys.argv[1:5]
     os.makedirs(outdir, exist_ok=True)
     job = os.path.splitext(os.path.basename(deck))[0]
