@@ -87,6 +87,7 @@ module vemcontact_driver_linear
       procedure :: setup
       procedure :: solve_state
       procedure, private :: build_system
+      procedure, private :: analyze_system
       procedure :: contact_matrix
       procedure :: numeric_factorize
       procedure :: rcond
@@ -132,7 +133,7 @@ contains
       end if
       call make_solver(kind, self%solver, error)
       if (allocated(error)) return
-      self%dist = self%solver%processes() > 1
+      self%dist = self%solver%processes > 1
       self%solver%shares = self%dist
       allocate (u0(2*model%nnode), source=0.0_wp)
       call self%build_system(model, error, contact, u0)
@@ -147,7 +148,7 @@ contains
       type(contact_state_t), intent(in), optional :: contact
       real(wp), intent(in) :: u(:)
       integer(i8), allocatable :: adj_ptr(:), ptr2(:)
-      integer(ip), allocatable :: adj(:), adj2(:), perm(:), extra(:, :)
+      integer(ip), allocatable :: adj(:), adj2(:), extra(:, :)
       real(wp) :: t0, t1, failed(1)
       type(error_t), allocatable :: err2
       integer(ip) :: j
@@ -160,9 +161,9 @@ contains
          ! once, from the elements' graph: it holds when contact pairs rebuild the pattern
          t1 = wall_time()
          call partition_mesh(model%nnode, model%elem_ptr, model%elem_conn, adj_ptr, adj, &
-                             self%solver%processes(), self%partition, error)
+                             self%solver%processes, self%partition, error)
          if (allocated(error)) return
-         self%solver%owned_dofs = 2*self%partition%nodes(self%solver%process() + 1)
+         self%solver%owned_dofs = 2*self%partition%nodes(self%solver%rank + 1)
          self%t_partition = wall_time() - t1
       end if
       if (present(contact)) then
@@ -183,7 +184,7 @@ contains
 
       t0 = wall_time()
       if (self%dist) then
-         call assemble_stiffness(model, self%k, error, self%partition%elem_part == self%solver%process())
+         call assemble_stiffness(model, self%k, error, self%partition%elem_part == self%solver%rank)
          ! an element that fails fails on one process: all stop, with the messages of all
          ! elements (assembled again on every process, only on this path)
          failed = merge(1.0_wp, 0.0_wp, allocated(error))
@@ -206,6 +207,19 @@ contains
       if (allocated(error)) return
       self%t_assemble = wall_time() - t0
 
+      call self%analyze_system(model, adj_ptr, adj, error)
+   end subroutine build_system
+
+   !> The solver's analysis of the pattern of `k`, whose node graph is `adj_ptr`/`adj`
+   !> (for a fill-reducing ordering); the last factorization is discarded.
+   subroutine analyze_system(self, model, adj_ptr, adj, error)
+      class(linear_system_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      integer(i8), intent(in) :: adj_ptr(:)
+      integer(ip), intent(in) :: adj(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer(ip), allocatable :: perm(:)
+      real(wp) :: t0
       t0 = wall_time()
       call self%solver%release()
       if (self%dist) then
@@ -223,7 +237,7 @@ contains
       if (allocated(error)) return
       self%t_analyze = wall_time() - t0
       self%factored = .false.
-   end subroutine build_system
+   end subroutine analyze_system
 
    !> Solve for the displacements u(2*nnode) of a load state.
    !> With `contact`, the active-set iteration of solve_contact; `u` then holds
@@ -237,7 +251,9 @@ contains
       type(contact_state_t), intent(inout), optional :: contact
       type(logger_t), intent(inout), optional :: log
       logical, allocatable :: fixed(:)
-      real(wp), allocatable :: f(:), f0(:), u0(:)
+      real(wp), allocatable :: f(:), f0(:)
+      integer(i8), allocatable :: adj_ptr(:)
+      integer(ip), allocatable :: adj(:)
       integer :: j, k
       self%iterations = 0
       self%factorizations = 0
@@ -254,9 +270,9 @@ contains
             return
          end if
       end if
-      f0 = f
+      if (self%fallback .and. .not. self%dist) f0 = f
       call self%solve_linear(model, st, fixed, f, u, error, log)
-      if (.not. allocated(error) .or. .not. self%fallback .or. self%dist) return
+      if (.not. allocated(error) .or. .not. allocated(f0)) return
       if (error%code /= err_solver) return
       ! the iterative solver `auto` chose failed (CG did not converge, or its set-up
       ! failed): the step again with the direct solver, which needs no convergence
@@ -274,8 +290,10 @@ contains
       if (allocated(error)) return
       self%fallback = .false.
       self%fell_back = .true.
-      allocate (u0(size(u)), source=0.0_wp)
-      call self%build_system(model, error, u=u0)
+      ! the assembled stiffness and its pattern stay: a new analysis for the new solver
+      call node_graph_from_elements(model%nnode, model%elem_ptr, model%elem_conn, adj_ptr, adj, error)
+      if (allocated(error)) return
+      call self%analyze_system(model, adj_ptr, adj, error)
       if (allocated(error)) return
       f = f0
       call self%solve_linear(model, st, fixed, f, u, error, log)
@@ -358,7 +376,7 @@ contains
       integer(ip) :: j
       rebuilt = .false.
       ! distributed: the springs in rank 0's share (the others only check the pattern)
-      owner = self%solver%process() == 0
+      owner = self%solver%rank == 0
       call copy_values(self%k, self%kb)
       call contact%add_stiffness(self%kb, ok, owner)
       if (.not. ok) then
@@ -412,7 +430,7 @@ contains
             f(j) = f(j) + g(j)
          end if
       end do
-      if (matrix) call constrain_share(a, fixed, diag, self%solver%process() == 0)
+      if (matrix) call constrain_share(a, fixed, diag, self%solver%rank == 0)
    end subroutine constrain_distributed
 
    subroutine numeric_factorize(self, error)

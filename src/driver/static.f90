@@ -87,6 +87,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(linear_system_t) :: sys
       type(sym_csc_t) :: kwhole
+      integer(ip), allocatable :: per_process(:)
       type(load_state_t) :: st
       type(contact_state_t) :: contact
       type(contact_table_t) :: tab
@@ -176,11 +177,10 @@ contains
 
       base = opts%out_dir//'/'//opts%job
       if (opts%write_files) then
-         if (sys%dist) then
-            call h5%open(base//'.h5', error, solver=sys%solver%describe(), partition=sys%partition%elements)
-         else
-            call h5%open(base//'.h5', error, solver=sys%solver%describe(), partition=[model%nelem])
-         end if
+         ! the elements of each process (one process: all of them)
+         per_process = [model%nelem]
+         if (sys%dist) per_process = sys%partition%elements
+         call h5%open(base//'.h5', error, solver=sys%solver%describe(), partition=per_process)
          if (allocated(error)) return
          call h5%write_mesh(model, error)
          if (allocated(error)) then

@@ -5,7 +5,7 @@ module vemcontact_solver_factory
    use vemcontact_error, only: error_t, fatal_error, err_input
    use vemcontact_solver_linear_solver, only: linear_solver_t
    use vemcontact_solver_cholmod, only: cholmod_solver_t
-   use vemcontact_solver_petsc, only: petsc_solver_t, petsc_gamg, petsc_hypre, petsc_mumps
+   use vemcontact_solver_petsc, only: petsc_solver_t, petsc_gamg, petsc_hypre, petsc_mumps, petsc_ranks, petsc_rank
    implicit none
    private
 
@@ -87,6 +87,8 @@ contains
             ! PETSc's solvers order for themselves; with several MPI processes the
             ! driver's partition of the mesh distributes the rows
             solver%takes_ordering = .false.
+            solver%processes = petsc_ranks()
+            solver%rank = petsc_rank()
          end select
       case default
          call fatal_error(error, 'error: unknown linear solver (known: '//solver_names()//')', err_input)

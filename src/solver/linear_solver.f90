@@ -10,7 +10,7 @@
 !> an iterative one; `solve` takes one right-hand side or a block of them.  Every
 !> failure travels in the error object.
 !>
-!> Under MPI (a backend with `processes() > 1`) every process calls these together;
+!> Under MPI (a backend with `processes > 1`) every process calls these together;
 !> the driver may then distribute the matrix: each process passes its share (its
 !> elements' part) with `shares` set and says how many rows it owns (`owned_dofs`),
 !> and adds vectors over the processes with `sum_over_ranks`.  A backend on one
@@ -42,14 +42,16 @@ module vemcontact_solver_linear_solver
       !> ordering): callers compute one only then.  vemcontact_solver_factory sets it.
       logical :: takes_ordering = .true.
       !> Set before `analyze`: `factorize` receives this process's share of the matrix,
-      !> the matrix being the sum of the shares over the processes (`processes() > 1`).
+      !> the matrix being the sum of the shares over the processes (`processes > 1`).
       logical :: shares = .false.
       !> Set before `analyze`: the rows this process owns, the next ones of the order
       !> `perm` after those of the lower ranks (whole nodes); -1: the backend splits evenly.
       integer(ip) :: owned_dofs = -1
+      !> The MPI processes that run the solver together and this one's rank (0-based):
+      !> 1 and 0 for a backend on one process.  vemcontact_solver_factory sets them.
+      integer :: processes = 1
+      integer :: rank = 0
    contains
-      procedure :: processes
-      procedure :: process
       procedure :: sum_over_ranks
       procedure(analyze_i), deferred :: analyze
       procedure(factorize_i), deferred :: factorize
@@ -120,26 +122,13 @@ module vemcontact_solver_linear_solver
       end function describe_i
    end interface
 contains
-   !> The number of processes that run the solver together (1 unless a backend says otherwise).
-   integer function processes(self)
-      class(linear_solver_t), intent(in) :: self
-      ! the same on one process whether the matrix comes in shares or not
-      processes = merge(1, 1, self%shares)
-   end function processes
-
-   !> This process's rank among them, 0-based (0 unless a backend says otherwise).
-   integer function process(self)
-      class(linear_solver_t), intent(in) :: self
-      process = merge(0, 0, self%shares)
-   end function process
-
    !> x = the sum of x over the processes, the same on every process (nothing on one).
    subroutine sum_over_ranks(self, x, error)
       class(linear_solver_t), intent(in) :: self
       real(wp), intent(inout) :: x(:)
       type(error_t), allocatable, intent(out) :: error
       ! one process: x is the sum already
-      if (self%processes() /= 1 .and. size(x) > 0) call fatal_error(error, 'sum_over_ranks: a backend on '// &
+      if (self%processes /= 1 .and. size(x) > 0) call fatal_error(error, 'sum_over_ranks: a backend on '// &
                                                                     'several processes must add', err_internal)
    end subroutine sum_over_ranks
 

@@ -66,8 +66,6 @@ module vemcontact_solver_petsc
       procedure :: rcond
       procedure :: release
       procedure :: describe
-      procedure :: processes
-      procedure :: process
       procedure :: sum_over_ranks
       final :: finalize
    end type petsc_solver_t
@@ -385,24 +383,12 @@ contains
       if (vc_petsc_comm_size() > 1) s = s//' on '//trim(buf)//' MPI processes'
    end function describe
 
-   !> The MPI processes of PETSc's communicator (1 while PETSc is not running).
-   integer function processes(self)
-      class(petsc_solver_t), intent(in) :: self
-      processes = merge(petsc_ranks(), petsc_ranks(), self%shares)
-   end function processes
-
-   !> This process's rank (0 while PETSc is not running).
-   integer function process(self)
-      class(petsc_solver_t), intent(in) :: self
-      process = merge(petsc_rank(), petsc_rank(), self%shares)
-   end function process
-
    !> x = the sum of x over the processes (MPI_Allreduce), the same on every process.
    subroutine sum_over_ranks(self, x, error)
       class(petsc_solver_t), intent(in) :: self
       real(wp), intent(inout) :: x(:)
       type(error_t), allocatable, intent(out) :: error
-      if (self%processes() == 1 .or. size(x) == 0) return
+      if (self%processes == 1 .or. size(x) == 0) return
       if (vc_petsc_sum(x, int(size(x), c_int64_t)) /= st_ok) &
          call fatal_error(error, 'error: MPI_Allreduce failed in the sum over the processes', err_solver)
    end subroutine sum_over_ranks
