@@ -100,7 +100,7 @@ contains
                      what = 'is smaller than 1e-130 (its diameter): choose a length unit '// &
                             'that brings it into range'
                   else
-                     what = shape_defect(model, conn(:nc), xy(:, :nc), model%elem_form(e))
+                     what = shape_defect(model, conn(:nc), xy(:, :nc), h, model%elem_form(e))
                   end if
                end if
                if (len(what) == 0 .and. nc < n .and. model%elem_form(e) /= form_fem) then
@@ -223,18 +223,18 @@ contains
    !> coincident nodes (a zero-length side has no normal, and a pinched polygon
    !> has no interior around the pinch), folded or crossing sides, clockwise
    !> order, and for the FEM quad a bilinear map that folds at a Gauss point.
-   function shape_defect(model, conn, xy, form) result(what)
+   !> `h`: the polygon's diameter.
+   function shape_defect(model, conn, xy, h, form) result(what)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: conn(:)
-      real(wp), intent(in) :: xy(:, :)
+      real(wp), intent(in) :: xy(:, :), h
       integer, intent(in) :: form
       character(len=:), allocatable :: what
-      real(wp) :: h, dist, angle
+      real(wp) :: dist, angle
       integer :: kind, i, j, n, at
       character(len=96) :: b
       n = size(xy, 2)
       what = ''
-      h = polygon_diameter(xy)
       if (collinear(xy, h)) then
          write (b, '(es9.2)') abs(polygon_signed_area(xy))/max(h*h, tiny(h))
          what = 'has zero area (its nodes are collinear or coincide; area/diameter^2 = '// &
