@@ -20,7 +20,7 @@ module vemcontact_output_vtu
    use vemcontact_model, only: model_t, etype_polygon2, etype_quad8, etype_tri6
    use vemcontact_post_stress, only: principal_stresses
    use vemcontact_output_base64, only: base64_encode, base64_length, as_bytes
-   use vemcontact_output_zlib, only: zlib_bound, zlib_compress
+   use vemcontact_output_zlib, only: zlib_compress_blocks, zlib_processors
    use vemcontact_output_xml, only: xml_escape
    use vemcontact_output_selection, only: field_selection_t
    use vemcontact_safe_file, only: safe_file_t
@@ -360,31 +360,20 @@ contains
       character(len=*), intent(in) :: bytes
       integer, intent(inout) :: ios
       character(len=:), allocatable :: packed, buf
-      integer(i8), allocatable :: header(:)
-      integer(i8) :: nb, nblocks, k, first, last, pos, nout, bound
+      integer(i8), allocatable :: sizes(:), header(:)
+      integer(i8) :: nout
       logical :: ok
-      nb = len(bytes, kind=i8)
-      nblocks = (nb + zlib_block - 1_i8)/zlib_block
-      allocate (header(3 + nblocks))
-      header(1:3) = [nblocks, zlib_block, mod(nb, zlib_block)]
-      bound = zlib_bound(zlib_block)
-      allocate (character(len=nblocks*bound) :: packed)
-      pos = 0
-      do k = 1, nblocks
-         first = (k - 1)*zlib_block + 1
-         last = min(nb, k*zlib_block)
-         call zlib_compress(bytes(first:last), packed(pos + 1:pos + bound), zlib_level, nout, ok)
-         if (.not. ok) then
-            ios = -1
-            return
-         end if
-         header(3 + k) = nout
-         pos = pos + nout
-      end do
+      ! the blocks on every processor this process may use: the bytes are the same
+      call zlib_compress_blocks(bytes, zlib_block, zlib_level, zlib_processors(), packed, sizes, nout, ok)
+      if (.not. ok) then
+         ios = -1
+         return
+      end if
+      header = [size(sizes, kind=i8), zlib_block, mod(len(bytes, kind=i8), zlib_block), sizes]
       allocate (character(len=base64_length(max(piece_bytes, 8_i8*size(header, kind=i8)))) :: buf)
       call base64_encode(as_bytes(header), buf)
       call put(unit, buf(1:base64_length(8_i8*size(header, kind=i8))), ios)
-      call put_base64(unit, packed(1:pos), buf, ios)
+      call put_base64(unit, packed(1:nout), buf, ios)
    end subroutine put_compressed
 
    !> Base64 of `bytes` in pieces of `piece_bytes` through the work buffer `buf`.

@@ -194,8 +194,8 @@ contains
          integer(ip), intent(in) :: cells(:)
          real(wp), intent(out) :: sfit(3)
          logical, intent(out) :: ok
-         real(wp) :: mm(3, 3), rhs(3, 3), p(3), h, det, tr, inv(3, 3)
-         integer :: jj
+         real(wp) :: mm(3, 3), rhs(3, 3), p(3), sc(3), h, det, tr, inv(3, 3)
+         integer :: jj, kk
          h = 0.0_wp
          do jj = 1, size(cells)
             h = max(h, hypot(cen(1, cells(jj)) - model%x(1, node), cen(2, cells(jj)) - model%x(2, node)))
@@ -207,9 +207,12 @@ contains
          rhs = 0.0_wp
          do jj = 1, size(cells)
             p = [1.0_wp, (cen(1, cells(jj)) - model%x(1, node))/h, (cen(2, cells(jj)) - model%x(2, node))/h]
-            mm = mm + spread(p, 2, 3)*spread(p, 1, 3)
-            ! rhs(:, component)
-            rhs = rhs + spread(p, 2, 3)*spread(s_elem([1, 2, 4], cells(jj)), 1, 3)
+            sc = s_elem([1, 2, 4], cells(jj))
+            ! outer products p p^T and p s^T (rhs(:, component)), without temporaries
+            do kk = 1, 3
+               mm(:, kk) = mm(:, kk) + p*p(kk)
+               rhs(:, kk) = rhs(:, kk) + p*sc(kk)
+            end do
          end do
          tr = (mm(1, 1) + mm(2, 2) + mm(3, 3))/3.0_wp
          call inverse3(mm, inv, det)
