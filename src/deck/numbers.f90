@@ -5,10 +5,14 @@
 !> int64, and when it is at most 2**53 and the power of ten is at most 22 in
 !> magnitude, both operands of one multiplication or division are exact doubles,
 !> so the single IEEE rounding gives the correctly rounded result.  Every other
-!> well-formed token falls back to Fortran's own internal READ.
+!> well-formed token goes to C's strtod (correctly rounded in glibc, and what
+!> gfortran's READ calls in the end, without the READ's set-up of an internal unit,
+!> which cost 0.15 s on 2e5 coordinates of 17 digits); tokens longer than 63
+!> characters fall back to Fortran's internal READ.
 module vemcontact_deck_numbers
    use vemcontact_kinds, only: wp, ip, i8
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: iso_c_binding, only: c_char, c_double, c_null_ptr, c_ptr
    implicit none
    private
 
@@ -29,6 +33,16 @@ module vemcontact_deck_numbers
                                          1.0e12_wp, 1.0e13_wp, 1.0e14_wp, 1.0e15_wp, 1.0e16_wp, 1.0e17_wp, &
                                          1.0e18_wp, 1.0e19_wp, 1.0e20_wp, 1.0e21_wp, 1.0e22_wp]
    integer(i8), parameter :: two53 = 9007199254740992_i8
+
+   interface
+      !> C's strtod, without the end pointer: the token's syntax is checked before.
+      pure function c_strtod(str, endptr) bind(C, name='strtod') result(v)
+         import :: c_char, c_double, c_ptr
+         character(kind=c_char), intent(in) :: str(*)
+         type(c_ptr), value, intent(in) :: endptr
+         real(c_double) :: v
+      end function c_strtod
+   end interface
 
 contains
 
@@ -100,6 +114,7 @@ contains
       integer :: i, n, d, nd, exp_adj, e, esign, e10, ios
       logical :: neg, seen_digit, truncated, seen_edigit
       character(len=1) :: c
+      character(len=64) :: cbuf
       val = 0.0_wp
       n = len(s)
       if (n == 0) then
@@ -216,7 +231,18 @@ contains
          if (neg) val = -val
          return
       end if
-      read (s, *, iostat=ios) val
+      if (n < len(cbuf)) then
+         ! C's spelling of the exponent letter, and a NUL at the end
+         cbuf(1:n) = s
+         do i = 1, n
+            if (cbuf(i:i) == 'd' .or. cbuf(i:i) == 'D') cbuf(i:i) = 'e'
+         end do
+         cbuf(n + 1:n + 1) = achar(0)
+         val = real(c_strtod(cbuf, c_null_ptr), wp)
+         ios = 0
+      else
+         read (s, *, iostat=ios) val
+      end if
       if (ios /= 0) then
          stat = num_syntax
          val = 0.0_wp
