@@ -62,7 +62,8 @@ contains
    pure function vem_workspace_size(n) result(nw)
       integer, intent(in) :: n
       integer :: nw
-      nw = 3*max(n, 1)
+      ! q (2n), s (n), and for the stabilisation g = q/|E| (2n) and r = x - xbar (2n)
+      nw = 7*max(n, 1)
    end function vem_workspace_size
 
    !> Boundary weights q_i into work(1:2n) as (qx1, qy1, qx2, ...).  With a
@@ -94,7 +95,7 @@ contains
       real(wp), intent(in), optional :: tau
       real(wp) :: area, xbar(2), bl(3, 2), cl(3, 2), qx, qy, m2gl(2), tr, floor_s, ts
       real(wp) :: m0, m1(2), m2(2, 2), gi(2), gl(2), ri(2), rl(2), ail, ali, k, si, sl, rn, excess
-      integer :: n, i, l, a, ia, js
+      integer :: n, i, l, a, ia, js, jg, jr
 
       n = size(xy, 2)
       ke = 0.0_wp
@@ -156,11 +157,19 @@ contains
       ! M0 = sum s_j, M1 = sum s_j r_j, M2 = sum s_j r_j r_j^T: O(n^2), no n x n work.
       xbar = sum(xy, dim=2)/real(n, wp)
       rn = 1.0_wp/real(n, wp)
+      ! g_i = q_i/|E| in work(jg+1 : jg+2n), r_i = x_i - xbar in work(jr+1 : jr+2n),
+      ! formed once instead of once per pair
+      jg = 3*n
+      jr = 5*n
+      do i = 1, n
+         work(jg + 2*i - 1:jg + 2*i) = work(2*i - 1:2*i)/area
+         work(jr + 2*i - 1:jr + 2*i) = xy(:, i) - xbar
+      end do
       m0 = 0.0_wp
       m1 = 0.0_wp
       m2 = 0.0_wp
       do i = 1, n
-         ri = xy(:, i) - xbar
+         ri = work(jr + 2*i - 1:jr + 2*i)
          si = work(js + i)
          m0 = m0 + si
          m1 = m1 + si*ri
@@ -168,13 +177,13 @@ contains
          m2(:, 2) = m2(:, 2) + si*ri(2)*ri
       end do
       do l = 1, n
-         gl = work(2*l - 1:2*l)/area
-         rl = xy(:, l) - xbar
+         gl = work(jg + 2*l - 1:jg + 2*l)
+         rl = work(jr + 2*l - 1:jr + 2*l)
          sl = work(js + l)
          m2gl = matmul(m2, gl)
          do i = 1, l
-            gi = work(2*i - 1:2*i)/area
-            ri = xy(:, i) - xbar
+            gi = work(jg + 2*i - 1:jg + 2*i)
+            ri = work(jr + 2*i - 1:jr + 2*i)
             si = work(js + i)
             ail = rn + dot_product(gl, ri)
             ali = rn + dot_product(gi, rl)

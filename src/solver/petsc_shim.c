@@ -68,8 +68,9 @@ typedef struct {
     PetscInt *lptr;       /* this process's rows (PETSc's numbering): CSR offsets into pcol */
     PetscInt *pcol;       /* ... and their columns in PETSc's numbering */
     int64_t ncsc;         /* entries of the upper-triangle CSC */
-    int64_t *pos_upper;   /* CSC entry k -> its position in the CSR arrays (row i, column j) */
-    int64_t *pos_lower;   /* CSC entry k -> position of (j, i); -1 on the diagonal */
+    PetscInt *pos_upper;  /* CSC entry k -> its position in the CSR arrays (row i, column j) */
+    PetscInt *pos_lower;  /* CSC entry k -> position of (j, i); -1 on the diagonal (positions
+                           * are below row_ptr[n], a PetscInt, checked in vc_petsc_analyze) */
     PetscScalar *val;     /* CSR values */
     int set_up;           /* the KSP holds the operator of the last factorize */
     int64_t own_dofs;     /* rows of this process as vc_petsc_distribute asked; -1: an even split */
@@ -330,8 +331,8 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
     rowlen = calloc((size_t)n + 1, sizeof(PetscInt));
     h->row_ptr = malloc(((size_t)n + 1) * sizeof(PetscInt));
     fill = malloc(((size_t)n + 1) * sizeof(int64_t));
-    h->pos_upper = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(int64_t));
-    h->pos_lower = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(int64_t));
+    h->pos_upper = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(PetscInt));
+    h->pos_lower = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(PetscInt));
     if (!rowlen || !h->row_ptr || !fill || !h->pos_upper || !h->pos_lower) {
         st = VC_PETSC_NOMEM;
         goto done;
@@ -373,11 +374,11 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
         for (k = col_ptr[j] - 1; k < col_ptr[j + 1] - 1; k++) {
             int64_t i = row_idx[k] - 1;
             /* entry (i, j), i <= j: row i, column j; and (j, i) in row j when i < j */
-            h->pos_upper[k] = fill[i];
+            h->pos_upper[k] = (PetscInt)fill[i];
             h->col_idx[fill[i]++] = (PetscInt)j;
             h->pos_lower[k] = -1;
             if (i != j) {
-                h->pos_lower[k] = fill[j];
+                h->pos_lower[k] = (PetscInt)fill[j];
                 h->col_idx[fill[j]++] = (PetscInt)i;
             }
         }
