@@ -164,6 +164,14 @@ int vc_petsc_initialize(const char *options)
         argv_store[1] = arg1;
         argv_store[2] = NULL;
         singleton_mpi_defaults();
+        /* before PetscInitialize (the options database may be filled before it), so
+         * that the options PetscInitialize itself reads take effect: -log_view set
+         * after it left logging off and PetscFinalize failing on every process */
+        if (options && options[0] && PetscOptionsInsertString(NULL, options)) {
+            snprintf(init_message, sizeof init_message, "PETSc options could not be read: '%.200s'", options);
+            st = VC_PETSC_ERROR;
+            goto done;
+        }
         if (PetscInitialize(&argc, &argv, NULL, NULL)) {
             snprintf(init_message, sizeof init_message, "PETSc could not be initialized (is MPI usable?)");
             st = VC_PETSC_ERROR;
@@ -171,7 +179,6 @@ int vc_petsc_initialize(const char *options)
         }
         initialized_here = 1;
         PetscPushErrorHandler(quiet_handler, init_message);
-        if (options && options[0]) CHECK(PetscOptionsInsertString(NULL, options), "PETSc options", init_message);
     }
 done:
     feclearexcept(FE_ALL_EXCEPT);
