@@ -48,6 +48,7 @@ module vemcontact_contact_iteration
       real(wp) :: pressure = 0.0_wp      !< largest contact pressure
       real(wp) :: step = 1.0_wp          !< line search step
       logical :: factorized = .false.    !< a numeric factorization was paid
+      logical :: rebuilt = .false.       !< the matrix pattern was rebuilt (pairs left it)
       real(wp) :: time = 0.0_wp          !< wall time of the iteration, s
    end type iteration_record_t
 
@@ -288,7 +289,7 @@ contains
          rel = residual_norm(r, u, merge(0.0_wp, fext, fixed), fc, kmax, &
                              merge(maxval(contact%k, mask=contact%active, dim=1), 0.0_wp, any(contact%active)))
          rec = iteration_record_t(it, count(contact%active), nchanged, rel, contact%max_penetration(), &
-                                  contact%max_pressure(), step, t_fact > 0.0_wp, wall_time() - t_iter)
+                                  contact%max_pressure(), step, t_fact > 0.0_wp, rebuilt, wall_time() - t_iter)
          sys%records = [sys%records, rec]
          write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4,2x,f10.6,2x,f6.4)') it, &
             rec%active, nchanged, rel, rec%penetration, rec%pressure, rec%time, t_fact, t_srch, step
