@@ -95,15 +95,18 @@ function(vc_skipped_test name why)
 endfunction()
 
 # The PETSc solvers (gamg, hypre, mumps) against CHOLMOD on a VEM cantilever, a
-# polygon mesh, a Voronoi contact deck and an FEM contact deck, within tolerances
-# derived from their stopping rules (compare_solvers.py); skipped, saying why,
-# when CMake found no PETSc
+# polygon mesh, a Voronoi contact deck, an FEM contact deck and a contact deck whose
+# iteration rebuilds the matrix pattern (--rebuilds: the solver analyses the new
+# pattern), within tolerances derived from their stopping rules (compare_solvers.py);
+# skipped, saying why, when CMake found no PETSc
 if(VC_HAVE_PETSC)
   add_test(NAME petsc_solvers
-    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py" $<TARGET_FILE:vemcontact>
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py" --rebuilds sliding_rebuild
+            $<TARGET_FILE:vemcontact>
             "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers"
             "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp"
-            "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp" "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
+            "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp" "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp"
+            "${VC_DECKS}/sliding_rebuild.inp")
 else()
   vc_skipped_test(petsc_solvers "vemcontact was built without PETSc (pkg-config PETSc not found; scripts/install-deps.sh installs petsc-dev)")
 endif()
