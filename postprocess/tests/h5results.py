@@ -7,7 +7,7 @@ import numpy as np
 def iteration_records(h5_path):
     """Per step with contact iterations (in step order): a dict of the record arrays
     (iteration, active, changed, residual, max_penetration, max_pressure, step,
-    factorized, time)."""
+    factorized, rebuilt, time)."""
     out = []
     with h5py.File(h5_path, "r") as f:
         for key in sorted(f["steps"]):
@@ -30,3 +30,8 @@ def line_search_steps(h5_path):
 def factorizations(h5_path):
     """The number of numeric factorizations of every step with contact."""
     return [int(r["factorized"].sum()) for r in iteration_records(h5_path)]
+
+
+def pattern_rebuilds(h5_path):
+    """The number of matrix pattern rebuilds of every step with contact."""
+    return [int(r["rebuilt"].sum()) for r in iteration_records(h5_path)]

@@ -13,7 +13,7 @@
 !> are the pure functions of vemcontact_contact_rules.
 module vemcontact_contact_iteration
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_error, only: error_t, fatal_error, err_solver
+   use vemcontact_error, only: error_t, fatal_error, err_solver, err_internal
    use vemcontact_model, only: model_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_contact_rules, only: matrix_key_t, key_of, same_key, line_search_step, needs_line_search, &
@@ -48,6 +48,7 @@ module vemcontact_contact_iteration
       real(wp) :: pressure = 0.0_wp      !< largest contact pressure
       real(wp) :: step = 1.0_wp          !< line search step
       logical :: factorized = .false.    !< a numeric factorization was paid
+      logical :: rebuilt = .false.       !< the matrix pattern was rebuilt (pairs left it)
       real(wp) :: time = 0.0_wp          !< wall time of the iteration, s
    end type iteration_record_t
 
@@ -288,7 +289,7 @@ contains
          rel = residual_norm(r, u, merge(0.0_wp, fext, fixed), fc, kmax, &
                              merge(maxval(contact%k, mask=contact%active, dim=1), 0.0_wp, any(contact%active)))
          rec = iteration_record_t(it, count(contact%active), nchanged, rel, contact%max_penetration(), &
-                                  contact%max_pressure(), step, t_fact > 0.0_wp, wall_time() - t_iter)
+                                  contact%max_pressure(), step, t_fact > 0.0_wp, rebuilt, wall_time() - t_iter)
          sys%records = [sys%records, rec]
          write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4,2x,f10.6,2x,f6.4)') it, &
             rec%active, nchanged, rel, rec%penetration, rec%pressure, rec%time, t_fact, t_srch, step
@@ -412,8 +413,10 @@ contains
          call sys%numeric_factorize(error)
          if (allocated(error)) then
             ! a penalty stiff enough to swamp the elastic stiffness loses positive
-            ! definiteness to round-off: say so in the model's terms
-            if (any(contact%active)) error%message = 'error: with the closed contact springs the '// &
+            ! definiteness to round-off: say so in the model's terms (an internal error,
+            ! such as a matrix that is not of the analysed pattern, stays as it is)
+            if (any(contact%active) .and. error%code /= err_internal) &
+               error%message = 'error: with the closed contact springs the '// &
                'stiffness matrix is not positive definite in floating point ('//error%message//')'// &
                new_line('a')//conditioning_hint(maxval(contact%k, mask=contact%active)/kmax)
             return

@@ -300,7 +300,7 @@ contains
    !> step (the paper's Table 1 and the log's iteration lines): iteration, active
    !> (closed slave entries), changed, residual (relative), max_penetration,
    !> max_pressure, step (line search), factorized (1: a numeric factorization was
-   !> paid), time (wall seconds).  Call after write_contact of the step's pairs.
+   !> paid), rebuilt (1: the matrix pattern was rebuilt), time (wall seconds).  Call after write_contact of the step's pairs.
    subroutine h5_write_iterations(self, istep, records, error)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
@@ -330,6 +330,8 @@ contains
       if (.not. allocated(error)) call put_int(self, grp, 'changed', dims, col, error)
       col = merge(1, 0, records%factorized)
       if (.not. allocated(error)) call put_int(self, grp, 'factorized', dims, col, error)
+      col = merge(1, 0, records%rebuilt)
+      if (.not. allocated(error)) call put_int(self, grp, 'rebuilt', dims, col, error)
       val = records%residual
       if (.not. allocated(error)) call put_real(self, grp, 'residual', dims, val, error)
       val = records%penetration

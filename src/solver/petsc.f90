@@ -124,10 +124,10 @@ module vemcontact_solver_petsc
          integer(c_int64_t), intent(out) :: info
       end function vc_petsc_analyze
 
-      integer(c_int) function vc_petsc_factorize(handle, n, val, rtol, maxit) bind(c, name='vc_petsc_factorize')
+      integer(c_int) function vc_petsc_factorize(handle, n, nnz, val, rtol, maxit) bind(c, name='vc_petsc_factorize')
          import :: c_int, c_ptr, c_int64_t, c_double
          type(c_ptr), value :: handle
-         integer(c_int64_t), value :: n
+         integer(c_int64_t), value :: n, nnz
          real(c_double), intent(in) :: val(*)
          real(c_double), value :: rtol
          integer(c_int), value :: maxit
@@ -303,10 +303,13 @@ contains
       end if
       call check_matrix_arrays(a, .true., 'PETSc', error)
       if (allocated(error)) return
-      st = vc_petsc_factorize(self%handle, int(a%n, c_int64_t), a%val, real(self%rtol, c_double), &
-                              int(self%max_iterations, c_int))
+      st = vc_petsc_factorize(self%handle, int(a%n, c_int64_t), int(a%col_ptr(a%n + 1) - 1, c_int64_t), a%val, &
+                              real(self%rtol, c_double), int(self%max_iterations, c_int))
       if (st == st_order) then
          call fatal_error(error, 'PETSc factorize called before analyze', err_internal)
+      else if (st == st_bad_input) then
+         call fatal_error(error, 'PETSc factorize: the matrix differs in order or number of entries '// &
+                          'from the analysed pattern', err_internal)
       else if (st /= st_ok) then
          call fatal_error(error, 'error: PETSc '//self%describe()//' set-up failed: '// &
                           status_text(st, self%handle), err_solver)

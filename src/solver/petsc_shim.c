@@ -533,9 +533,11 @@ done:
     return st;
 }
 
-/* New values (upper CSC, the analysed pattern) and the preconditioner or factor
- * set up; CG stops at |b - A x| <= rtol |b| or after maxit iterations. */
-int vc_petsc_factorize(void *handle, int64_t n, const double *val, double rtol, int maxit)
+/* New values (upper CSC, the analysed pattern: nnz entries) and the preconditioner or
+ * factor set up; CG stops at |b - A x| <= rtol |b| or after maxit iterations.  A matrix
+ * of another order or number of entries (a pattern rebuilt without a new analysis) is
+ * refused: its values would land in the wrong places, or be read past their end. */
+int vc_petsc_factorize(void *handle, int64_t n, int64_t nnz, const double *val, double rtol, int maxit)
 {
     fenv_t env;
     vc_petsc_t *h = handle;
@@ -544,7 +546,7 @@ int vc_petsc_factorize(void *handle, int64_t n, const double *val, double rtol, 
     PetscInt r;
 
     if (!h || !h->a) return VC_PETSC_ORDER;
-    if (n != h->n) return VC_PETSC_BAD_INPUT;
+    if (n != h->n || nnz != h->ncsc) return VC_PETSC_BAD_INPUT;
     feholdexcept(&env);
     h->message[0] = '\0';
     h->set_up = 0;
@@ -751,9 +753,9 @@ int vc_petsc_analyze(void *handle, int64_t n, const int64_t *col_ptr, const int3
     *info = 0;
     return VC_PETSC_NOT_BUILT;
 }
-int vc_petsc_factorize(void *handle, int64_t n, const double *val, double rtol, int maxit)
+int vc_petsc_factorize(void *handle, int64_t n, int64_t nnz, const double *val, double rtol, int maxit)
 {
-    (void)handle, (void)n, (void)val, (void)rtol, (void)maxit;
+    (void)handle, (void)n, (void)nnz, (void)val, (void)rtol, (void)maxit;
     return VC_PETSC_NOT_BUILT;
 }
 int vc_petsc_solve(void *handle, int64_t n, int64_t nrhs, const double *b, double *x, int64_t *info)

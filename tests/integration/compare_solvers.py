@@ -1,7 +1,7 @@
 """Run decks with CHOLMOD and with the PETSc solvers and compare the displacements.
 
     usage: compare_solvers.py [--launcher "mpiexec -n 2"] [--options "--ordering metis"]
-                              EXE OUTDIR DECK [DECK ...]
+                              [--rebuilds JOB[,JOB ...]] EXE OUTDIR DECK [DECK ...]
 
 Every deck runs with --solver cholmod (the reference: a backward-stable direct
 solve) and with gamg, hypre and mumps; the displacements U of every step (the
@@ -30,6 +30,13 @@ process with a fair share (at least a quarter of an even one; METIS balances the
 nodes to within 3 %, and the elements follow them).  Serial runs must say one process
 with every element.  --options are added to the PETSc solvers' command lines.
 
+--rebuilds names decks (by job name) whose contact iteration must rebuild the matrix
+pattern (the contact pairs move past the candidate pairs the pattern holds): every run
+of them, serial CHOLMOD and each PETSc solver (under the launcher: the partition kept,
+each process assembling its elements into the new pattern, the solver analysing it
+again), must record at least one rebuild in the HDF5 iteration records
+(/steps/NNNN/contact/iterations/rebuilt), and its answer is compared as above.
+
 Exit status 0 when every comparison holds, 1 otherwise; each comparison is printed.
 """
 from __future__ import annotations
@@ -48,7 +55,7 @@ RTOL = 1.0e-10            # CG's stopping rule (src/solver/petsc.f90 default_rto
 EPS = np.finfo(float).eps
 
 
-def run(exe, deck, out, solver, extra=(), launcher=()):
+def run(exe, deck, out, solver, extra=(), launcher=(), rebuild=False):
     cmd = [*launcher, exe, "-q", "--solver", solver, "-o", out, *extra, deck]
     res = subprocess.run(cmd, capture_output=True, text=True)
     if res.returncode != 0:
@@ -61,6 +68,8 @@ def run(exe, deck, out, solver, extra=(), launcher=()):
         return None
     with h5py.File(os.path.join(out, job + ".h5"), "r") as f:
         if not partition_ok(f, os.path.basename(deck), solver, bool(launcher)):
+            return None
+        if rebuild and not rebuilt(f, os.path.basename(deck), solver):
             return None
         return ({k: f["steps"][k]["U"][()] for k in f["steps"]}, os.path.join(out, job + ".mtx"),
                 sorted(f for f in os.listdir(out) if not f.endswith(".mtx")))
@@ -81,6 +90,16 @@ def partition_ok(f, deck, solver, launched):
     return bool(good)
 
 
+def rebuilt(f, deck, solver):
+    """At least one contact iteration of the run rebuilt the matrix pattern."""
+    per_step = [int(np.sum(f["steps"][k]["contact/iterations"].get("rebuilt", [-1])))
+                for k in sorted(f["steps"]) if "contact/iterations" in f["steps"][k]]
+    # -1: the step's records have no `rebuilt` (written by an older vemcontact)
+    good = sum(per_step) > 0 and min(per_step) >= 0
+    print(f"{'ok  ' if good else 'FAIL'} {deck} {solver}: matrix pattern rebuilds per step {per_step}")
+    return good
+
+
 def condition(mtx):
     """2-norm condition number of the symmetric matrix in the Matrix Market file."""
     a = scipy.io.mmread(mtx).tocsc()
@@ -93,10 +112,12 @@ def condition(mtx):
 
 
 def main(argv):
-    launcher, options = [], []
-    while len(argv) > 2 and argv[1] in ("--launcher", "--options"):
+    launcher, options, rebuilds = [], [], []
+    while len(argv) > 2 and argv[1] in ("--launcher", "--options", "--rebuilds"):
         if argv[1] == "--launcher":
             launcher = argv[2].split()
+        elif argv[1] == "--rebuilds":
+            rebuilds = argv[2].split(",")
         else:
             options = argv[2].split()
         argv = argv[:1] + argv[3:]
@@ -104,14 +125,16 @@ def main(argv):
     ok = True
     for deck in decks:
         name = os.path.splitext(os.path.basename(deck))[0]
-        ref = run(exe, deck, os.path.join(outdir, name, "cholmod"), "cholmod", ["--write-matrix"])
+        ref = run(exe, deck, os.path.join(outdir, name, "cholmod"), "cholmod", ["--write-matrix"],
+                  rebuild=name in rebuilds)
         if ref is None:
             ok = False
             continue
         uref, mtx, files_ref = ref
         kappa = condition(mtx)
         for solver in ("gamg", "hypre", "mumps"):
-            got = run(exe, deck, os.path.join(outdir, name, solver), solver, options, launcher=launcher)
+            got = run(exe, deck, os.path.join(outdir, name, solver), solver, options, launcher=launcher,
+                      rebuild=name in rebuilds)
             if got is None:
                 ok = False
                 continue

@@ -95,15 +95,18 @@ function(vc_skipped_test name why)
 endfunction()
 
 # The PETSc solvers (gamg, hypre, mumps) against CHOLMOD on a VEM cantilever, a
-# polygon mesh, a Voronoi contact deck and an FEM contact deck, within tolerances
-# derived from their stopping rules (compare_solvers.py); skipped, saying why,
-# when CMake found no PETSc
+# polygon mesh, a Voronoi contact deck, an FEM contact deck and a contact deck whose
+# iteration rebuilds the matrix pattern (--rebuilds: the solver analyses the new
+# pattern), within tolerances derived from their stopping rules (compare_solvers.py);
+# skipped, saying why, when CMake found no PETSc
 if(VC_HAVE_PETSC)
   add_test(NAME petsc_solvers
-    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py" $<TARGET_FILE:vemcontact>
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py" --rebuilds sliding_rebuild
+            $<TARGET_FILE:vemcontact>
             "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers"
             "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp"
-            "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp" "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp")
+            "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp" "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp"
+            "${VC_DECKS}/sliding_rebuild.inp")
 else()
   vc_skipped_test(petsc_solvers "vemcontact was built without PETSc (pkg-config PETSc not found; scripts/install-deps.sh installs petsc-dev)")
 endif()
@@ -111,17 +114,20 @@ set_tests_properties(petsc_solvers PROPERTIES LABELS deck)
 # the same under the MPI launcher with 2 processes (the mesh partitioned, each process
 # assembling its elements, matrix and solves distributed, one set of result files), against
 # the serial CHOLMOD answer: a body load, two contact decks and a cantilever with nonzero
-# prescribed displacements and loads in two steps (the second without a new factorization);
+# prescribed displacements and loads in two steps (the second without a new factorization),
+# and a slider pushed along a track whose contact iteration rebuilds the matrix pattern
+# (--rebuilds: every run must record a rebuild; the partition is kept across it);
 # the partition recorded in the HDF5 file checked; skipped, saying why, without PETSc or mpiexec.
 # Open MPI refuses root unless told (containers, CI run as root).
 if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
   add_test(NAME petsc_solvers_np2
     COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_solvers.py"
-            --launcher "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2"
+            --launcher "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" --rebuilds sliding_rebuild
             $<TARGET_FILE:vemcontact>
             "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers-np2"
             "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp" "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp"
-            "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp" "${VC_DECKS}/distributed_cantilever.inp")
+            "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp" "${VC_DECKS}/distributed_cantilever.inp"
+            "${VC_DECKS}/sliding_rebuild.inp")
   set_tests_properties(petsc_solvers_np2 PROPERTIES
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2)
 else()

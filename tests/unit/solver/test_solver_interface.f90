@@ -1,8 +1,9 @@
 !> Every backend of the linear solver interface (vemcontact_solver_factory), used
 !> only through `linear_solver_t`: solutions of an SPD system for one and for a
 !> block of right-hand sides, a second factorization with new values, calls out of
-!> order, and failures reported in the error object: CHOLMOD's on a negative definite
-!> matrix, CG's when it runs out of iterations.  Without PETSc
+!> order, a matrix with an entry more than the analysed pattern (a pattern rebuilt
+!> without a new analysis) refused, and failures reported in the error object:
+!> CHOLMOD's on a negative definite matrix, CG's when it runs out of iterations.  Without PETSc
 !> (the build did not find it) its backends must say so.
 program test_solver_interface
    use vemcontact_kinds, only: wp, i8
@@ -40,10 +41,11 @@ contains
       character(len=*), intent(in) :: name
       class(linear_solver_t), allocatable :: s
       type(error_t), allocatable :: error
-      type(sym_csc_t) :: a
+      type(sym_csc_t) :: a, grown
       real(wp), allocatable :: b(:), x(:), bb(:, :), xx(:, :), xy(:, :)
       real(wp) :: tol
       integer :: j
+      integer(i8) :: p
 
       tol = merge(cg_tol, direct_tol, kind == solver_gamg .or. kind == solver_hypre)
       a = laplacian5(20)          ! 400 unknowns: 200 "nodes" of 2 dofs
@@ -93,6 +95,17 @@ contains
          call t%check(residual(a, xx(:, j), bb(:, j)) <= tol, name//': residual of block column')
       end do
       call t%check(s%rcond() <= 1.0_wp, name//': rcond is an estimate or -1')
+
+      ! the same order with one entry more (row 1 of the last column): not the analysed
+      ! pattern, refused as an internal error (the driver analyses a rebuilt pattern)
+      grown = a
+      p = a%col_ptr(a%n)
+      grown%row_idx = [a%row_idx(:p - 1), 1, a%row_idx(p:)]
+      grown%val = [a%val(:p - 1), -0.1_wp, a%val(p:)]
+      grown%col_ptr(a%n + 1) = a%col_ptr(a%n + 1) + 1
+      call s%factorize(grown, error)
+      call t%check(allocated(error), name//': factorize with an entry more than the analysed pattern refused')
+      if (allocated(error)) call t%equal(error%code, err_internal, name//': ... as an internal error')
 
       ! failures: CHOLMOD on a negative definite matrix; CG limited to 2 iterations
       ! (MUMPS factors symmetric indefinite matrices as LDL' and solves them, and CG
