@@ -187,6 +187,17 @@ if(VC_HAVE_PETSC)
 else()
   vc_deck_test(solver_mumps ${VC_DECKS}/solver_mumps.inp 1 "built without PETSc")
 endif()
+# PETSc's own options reach it before it starts, under the launcher too (-log_view)
+if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
+  add_test(NAME mpi_petsc_options
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/mpi_petsc_options.py"
+            "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/mpi-petsc-options" "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp")
+  set_tests_properties(mpi_petsc_options PROPERTIES
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 TIMEOUT 300)
+else()
+  vc_skipped_test(mpi_petsc_options "needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
+endif()
 # the deck's SOLVER=CHOLMOD applies under the MPI launcher too, where it cannot run
 if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
   add_test(NAME deck_solver_cholmod_np2
