@@ -7,7 +7,7 @@
 !> 4 solver failure, 5 internal error.
 program vemcontact_main
    use vemcontact_kinds, only: wp, i8
-   use vemcontact_error, only: error_t, fatal_error, err_input, err_model
+   use vemcontact_error, only: error_t, fatal_error, err_input, err_model, err_solver
    use vemcontact_model, only: model_t, plane_strain
    use vemcontact_app_cli, only: cli_t, parse_command_line, usage_text, version_text
    use vemcontact_log, only: logger_t
@@ -208,14 +208,17 @@ contains
    !> several MPI processes an error of the collective phase is reported by rank 0
    !> alone; a later one by the process that met it, which then ends all of them.
    !> A later error of the model or the input (a floating part, a bad element) is met
-   !> by every process at the same point, as all hold the same model: a process other
-   !> than rank 0 waits a moment first, so that rank 0 reports it without the prefix
-   !> and ends the run; it reports the error itself only if that does not happen.
+   !> by every process at the same point, as all hold the same model, and so is a
+   !> solver's failure (PETSc's convergence test and its set-up failures are collective):
+   !> a process other than rank 0 waits a moment first, so that rank 0 reports it
+   !> without the prefix and ends the run; it reports the error itself only if that
+   !> does not happen.
    subroutine fail(err)
       type(error_t), intent(in) :: err
       integer :: r
       r = petsc_rank()
-      if (r > 0 .and. .not. collective_phase .and. (err%code == err_input .or. err%code == err_model)) &
+      if (r > 0 .and. .not. collective_phase .and. (err%code == err_input .or. err%code == err_model .or. &
+                                             err%code == err_solver)) &
          call pause_seconds(rank0_grace_s)
       if (r == 0) then
          write (error_unit, '(a)') escape_controls(err%message)

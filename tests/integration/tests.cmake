@@ -148,11 +148,18 @@ if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
             "${CMAKE_CURRENT_BINARY_DIR}/mpi-model-error-once" "${VC_DECKS}/floating_part.inp")
   set_tests_properties(mpi_model_error_once PROPERTIES
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 TIMEOUT 120)
+  add_test(NAME mpi_solver_error_once
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/mpi_error_ends_all.py" --solver-error
+            "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2" $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/mpi-solver-error-once" "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp")
+  set_tests_properties(mpi_solver_error_once PROPERTIES
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 TIMEOUT 120)
 else()
   vc_skipped_test(mpi_error_ends_all "needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
   vc_skipped_test(mpi_model_error_once "needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
+  vc_skipped_test(mpi_solver_error_once "needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
 endif()
-set_tests_properties(mpi_error_ends_all mpi_model_error_once PROPERTIES LABELS deck)
+set_tests_properties(mpi_error_ends_all mpi_model_error_once mpi_solver_error_once PROPERTIES LABELS deck)
 # without PETSc, --solver gamg stops with a clear message, exit status 1
 if(NOT VC_HAVE_PETSC)
   vc_deck_test(solver_gamg_without_petsc "${PROJECT_SOURCE_DIR}/inputs/example1_cantilever.inp" 1
