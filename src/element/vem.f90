@@ -93,18 +93,20 @@ contains
       real(wp), intent(inout) :: work(:)
       integer, intent(out) :: info
       real(wp), intent(in), optional :: tau
-      real(wp) :: area, xbar(2), bl(3, 2), cl(3, 2), qx, qy, m2gl(2), tr, floor_s, ts
+      real(wp) :: area, xbar(2), cl(3, 2), qx, qy, m2gl(2), tr, floor_s, ts
       real(wp) :: m0, m1(2), m2(2, 2), gi(2), gl(2), ri(2), rl(2), ail, ali, k, si, sl, rn, excess
       integer :: n, i, l, a, ia, js, jg, jr
 
       n = size(xy, 2)
-      ke = 0.0_wp
       info = 0
       area = polygon_signed_area(xy)
       if (n < 3 .or. .not. area > 0.0_wp) then
+         ke = 0.0_wp
          info = 1
          return
       end if
+      ! every entry of ke is written below (the upper block triangle by the consistency
+      ! loop, the rest by the mirror at the end): no zeroing first
       call vem_boundary_weights(xy, work(1:2*n))
       js = 2*n     ! s is stored in work(js+1 : js+n)
 
@@ -112,8 +114,13 @@ contains
       ! with c = (t/|E|) D b_l formed once per l and b_i's sparsity written out (this
       ! loop is most of the assembly time)
       do l = 1, n
-         bl = b_block(work(2*l - 1), work(2*l))
-         cl = (thick/area)*matmul(d, bl)
+         ! (t/|E|) D b_l with b_l's zeros skipped: the sums of matmul(d, b_block(qx, qy))
+         ! in the same order, without the zero terms (matmul's inline loops stored and
+         ! reloaded every partial sum)
+         qx = work(2*l - 1)
+         qy = work(2*l)
+         cl(:, 1) = (thick/area)*(d(:, 1)*qx + d(:, 3)*qy)
+         cl(:, 2) = (thick/area)*(d(:, 2)*qy + d(:, 3)*qx)
          do i = 1, l
             qx = work(2*i - 1)
             qy = work(2*i)
