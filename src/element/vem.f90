@@ -114,9 +114,9 @@ contains
       ! with c = (t/|E|) D b_l formed once per l and b_i's sparsity written out (this
       ! loop is most of the assembly time)
       do l = 1, n
-         ! (t/|E|) D b_l with b_l's zeros skipped: the sums of matmul(d, b_block(qx, qy))
-         ! in the same order, without the zero terms (matmul's inline loops stored and
-         ! reloaded every partial sum)
+         ! (t/|E|) D b_l, b_l = |E| B_l = [[qx, 0], [0, qy], [qy, qx]]: the sums of
+         ! matmul(d, b_l) in the same order without the zero terms (matmul's inline
+         ! loops stored and reloaded every partial sum)
          qx = work(2*l - 1)
          qy = work(2*l)
          cl(:, 1) = (thick/area)*(d(:, 1)*qx + d(:, 3)*qy)
@@ -224,8 +224,12 @@ contains
       area = polygon_signed_area(xy)
       if (n < 3 .or. .not. area > 0.0_wp) return
       call vem_boundary_weights(xy, work(1:2*n))
+      ! sum of b_i u_i, b_i = |E| B_i with rows (qx, 0), (0, qy), (qy, qx), written out
+      ! without the zero terms
       do i = 1, n
-         eps = eps + matmul(b_block(work(2*i - 1), work(2*i)), ue(2*i - 1:2*i))
+         eps(1) = eps(1) + work(2*i - 1)*ue(2*i - 1)
+         eps(2) = eps(2) + work(2*i)*ue(2*i)
+         eps(3) = eps(3) + (work(2*i)*ue(2*i - 1) + work(2*i - 1)*ue(2*i))
       end do
       eps = eps/area
    end subroutine vem_strain
@@ -263,15 +267,4 @@ contains
          w(i) = area/real(n, wp) + dot_product(work(2*i - 1:2*i), dx)
       end do
    end subroutine vem_load_weights
-
-   !> |E| times the strain-displacement block of vertex i: [[qx,0],[0,qy],[qy,qx]].
-   pure function b_block(qx, qy) result(b)
-      real(wp), intent(in) :: qx, qy
-      real(wp) :: b(3, 2)
-      b = 0.0_wp
-      b(1, 1) = qx
-      b(2, 2) = qy
-      b(3, 1) = qy
-      b(3, 2) = qx
-   end function b_block
 end module vemcontact_element_vem
