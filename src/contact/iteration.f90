@@ -13,7 +13,7 @@
 !> are the pure functions of vemcontact_contact_rules.
 module vemcontact_contact_iteration
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_error, only: error_t, fatal_error, err_solver, err_internal
+   use vemcontact_error, only: error_t, fatal_error, err_solver
    use vemcontact_model, only: model_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_contact_rules, only: matrix_key_t, key_of, same_key, line_search_step, needs_line_search, &
@@ -63,6 +63,9 @@ module vemcontact_contact_iteration
       integer :: iterations = 0
       integer :: factorizations = 0
       logical :: refactorized = .false.
+      !> the last numeric_factorize failed on a pivot that was not positive (a direct
+      !> solver's finding that the matrix is not positive definite in floating point)
+      logical :: pivot_failed = .false.
       real(wp) :: t_factorize = 0, t_solve = 0, t_search = 0
       type(iteration_record_t), allocatable :: records(:)
    contains
@@ -413,9 +416,10 @@ contains
          call sys%numeric_factorize(error)
          if (allocated(error)) then
             ! a penalty stiff enough to swamp the elastic stiffness loses positive
-            ! definiteness to round-off: say so in the model's terms (an internal error,
-            ! such as a matrix that is not of the analysed pattern, stays as it is)
-            if (any(contact%active) .and. error%code /= err_internal) &
+            ! definiteness to round-off: say so in the model's terms when the solver
+            ! found a pivot that was not positive (any other failure, an iterative
+            ! solver's or an internal one, stays as it is)
+            if (any(contact%active) .and. sys%pivot_failed) &
                error%message = 'error: with the closed contact springs the '// &
                'stiffness matrix is not positive definite in floating point ('//error%message//')'// &
                new_line('a')//conditioning_hint(maxval(contact%k, mask=contact%active)/kmax)

@@ -437,6 +437,7 @@ contains
       class(linear_system_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: error
       call self%solver%factorize(self%kb, error)
+      self%pivot_failed = allocated(error) .and. self%solver%failed_column > 0
    end subroutine numeric_factorize
 
    real(wp) function rcond(self)
