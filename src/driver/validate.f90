@@ -362,6 +362,9 @@ contains
          if (model%elem_ptr(e + 1) - first /= 4) cycle
          xy = model%x(:, model%elem_conn(first:first + 3))
          if (.not. polygon_signed_area(xy) > 0.0_wp) cycle
+         ! every turn strictly to the left: no interior angle reaches 180 degrees (the
+         ! test below would find none), decided without the Jacobians and arc tangents
+         if (left_turns(xy)) cycle
          if (.not. quad4_min_gauss_jacobian(xy) > 0.0_wp) cycle     ! an error of validate_elements
          call polygon_max_angle(xy, angle, at)
          if (angle <= 180.0_wp) cycle
@@ -379,6 +382,22 @@ contains
          lines = [lines, string_t('warning: ... and '//trim(id)//' more non-convex FEM quads')]
       end if
    end function element_warnings
+
+   !> True when the polygon turns strictly left at every vertex (cross product of the
+   !> sides into and out of it positive): counter-clockwise and strictly convex.
+   pure logical function left_turns(xy)
+      real(wp), intent(in) :: xy(:, :)
+      real(wp) :: e1(2), e2(2)
+      integer :: i, n
+      n = size(xy, 2)
+      left_turns = .false.
+      do i = 1, n
+         e1 = xy(:, i) - xy(:, modulo(i - 2, n) + 1)
+         e2 = xy(:, modulo(i, n) + 1) - xy(:, i)
+         if (.not. e1(1)*e2(2) - e1(2)*e2(1) > 0.0_wp) return
+      end do
+      left_turns = .true.
+   end function left_turns
 
    !> Locking of the FEM elements at Poisson's ratio nu, from the measurements
    !> (plane-strain Timoshenko cantilever, 32 x 8 quads or the same split in

@@ -23,8 +23,8 @@ contains
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick
       real(wp), intent(out) :: ke(:, :)
       integer, intent(out) :: info
-      real(wp) :: b(3, 8), detj, nsh(4)
-      integer :: g, i, j
+      real(wp) :: b(3, 8), detj, nsh(4), db(3, 2), w, dxi, dyi
+      integer :: g, i, j, r, c
       ke = 0.0_wp
       info = 0
       if (.not. polygon_signed_area(xy) > 0.0_wp) then
@@ -38,7 +38,24 @@ contains
             info = 3
             return
          end if
-         ke(1:8, 1:8) = ke(1:8, 1:8) + (thick*detj)*matmul(transpose(b), matmul(d, b))
+         ! ke += t det J B^T D B on the upper block triangle, with B's zeros skipped: B_j's
+         ! columns are (dx, 0, dy) and (0, dy, dx); the sums of matmul(transpose(b),
+         ! matmul(d, b)) in the same order without the zero terms
+         w = thick*detj
+         do j = 1, 4
+            c = 2*j - 1
+            db(:, 1) = d(:, 1)*b(1, c) + d(:, 3)*b(3, c)
+            db(:, 2) = d(:, 2)*b(2, c + 1) + d(:, 3)*b(3, c + 1)
+            do i = 1, j
+               r = 2*i - 1
+               dxi = b(1, r)
+               dyi = b(2, r + 1)
+               ke(r, c) = ke(r, c) + w*(dxi*db(1, 1) + dyi*db(3, 1))
+               ke(r + 1, c) = ke(r + 1, c) + w*(dyi*db(2, 1) + dxi*db(3, 1))
+               ke(r, c + 1) = ke(r, c + 1) + w*(dxi*db(1, 2) + dyi*db(3, 2))
+               ke(r + 1, c + 1) = ke(r + 1, c + 1) + w*(dyi*db(2, 2) + dxi*db(3, 2))
+            end do
+         end do
       end do
       do j = 1, 8
          do i = j + 1, 8
@@ -53,11 +70,11 @@ contains
    !> problem before assembly.
    pure function quad4_min_gauss_jacobian(xy) result(r)
       real(wp), intent(in) :: xy(:, :)
-      real(wp) :: r, b(3, 8), detj, nsh(4), a
+      real(wp) :: r, detj, nsh(4), dxi(4), deta(4), jac(2, 2), a
       integer :: g
       r = huge(1.0_wp)
       do g = 1, 4
-         call quad4_point(xy, gp*xi_node(g), gp*eta_node(g), nsh, b, detj)
+         call quad4_jacobian(xy, gp*xi_node(g), gp*eta_node(g), nsh, dxi, deta, jac, detj)
          r = min(r, detj)
       end do
       a = abs(polygon_signed_area(xy))
@@ -73,8 +90,8 @@ contains
    pure subroutine quad4_stress(xy, d, ue, sig)
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
       real(wp), intent(out) :: sig(3)
-      real(wp) :: b(3, 8), detj, nsh(4)
-      integer :: g
+      real(wp) :: b(3, 8), detj, nsh(4), eps(3)
+      integer :: g, i
       sig = 0.0_wp
       do g = 1, 4
          call quad4_point(xy, gp*xi_node(g), gp*eta_node(g), nsh, b, detj)
@@ -82,7 +99,15 @@ contains
             sig = 0.0_wp
             return
          end if
-         sig = sig + matmul(d, matmul(b, ue(1:8)))
+         ! B u and D (B u): matmul's sums in the same order, B's zeros skipped
+         eps = 0.0_wp
+         do i = 1, 4
+            eps(1) = eps(1) + b(1, 2*i - 1)*ue(2*i - 1)
+            eps(2) = eps(2) + b(2, 2*i)*ue(2*i)
+            eps(3) = eps(3) + b(3, 2*i - 1)*ue(2*i - 1)
+            eps(3) = eps(3) + b(3, 2*i)*ue(2*i)
+         end do
+         sig = sig + (d(:, 1)*eps(1) + d(:, 2)*eps(2) + d(:, 3)*eps(3))
       end do
       sig = 0.25_wp*sig
    end subroutine quad4_stress
@@ -107,18 +132,9 @@ contains
    pure subroutine quad4_point(xy, xi, eta, nsh, b, detj)
       real(wp), intent(in) :: xy(:, :), xi, eta
       real(wp), intent(out) :: nsh(4), b(3, 8), detj
-      real(wp) :: dxi(4), deta(4), jac(2, 2), dx, dy, rel(2)
+      real(wp) :: dxi(4), deta(4), jac(2, 2), dx, dy
       integer :: i
-      jac = 0.0_wp
-      do i = 1, 4
-         nsh(i) = 0.25_wp*(1.0_wp + xi*xi_node(i))*(1.0_wp + eta*eta_node(i))
-         dxi(i) = 0.25_wp*xi_node(i)*(1.0_wp + eta*eta_node(i))
-         deta(i) = 0.25_wp*eta_node(i)*(1.0_wp + xi*xi_node(i))
-         rel = xy(:, i) - xy(:, 1)
-         jac(1, :) = jac(1, :) + dxi(i)*rel
-         jac(2, :) = jac(2, :) + deta(i)*rel
-      end do
-      detj = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
+      call quad4_jacobian(xy, xi, eta, nsh, dxi, deta, jac, detj)
       b = 0.0_wp
       if (.not. detj > 0.0_wp) return
       do i = 1, 4
@@ -130,4 +146,23 @@ contains
          b(3, 2*i) = dx
       end do
    end subroutine quad4_point
+
+   !> Shape functions, their derivatives in the natural coordinates, the Jacobian
+   !> and its determinant at (xi, eta), coordinates relative to node 1.
+   pure subroutine quad4_jacobian(xy, xi, eta, nsh, dxi, deta, jac, detj)
+      real(wp), intent(in) :: xy(:, :), xi, eta
+      real(wp), intent(out) :: nsh(4), dxi(4), deta(4), jac(2, 2), detj
+      real(wp) :: rel(2)
+      integer :: i
+      jac = 0.0_wp
+      do i = 1, 4
+         nsh(i) = 0.25_wp*(1.0_wp + xi*xi_node(i))*(1.0_wp + eta*eta_node(i))
+         dxi(i) = 0.25_wp*xi_node(i)*(1.0_wp + eta*eta_node(i))
+         deta(i) = 0.25_wp*eta_node(i)*(1.0_wp + xi*xi_node(i))
+         rel = xy(:, i) - xy(:, 1)
+         jac(1, :) = jac(1, :) + dxi(i)*rel
+         jac(2, :) = jac(2, :) + deta(i)*rel
+      end do
+      detj = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
+   end subroutine quad4_jacobian
 end module vemcontact_element_quad4
