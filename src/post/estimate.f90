@@ -27,7 +27,7 @@
 !> estimate_error2: the same estimator one degree up (the cells' own linear or quadratic
 !> stresses, a quadratic patch recovery at the corners).
 module vemcontact_post_estimate
-   use vemcontact_kinds, only: wp, ip
+   use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_model, only: model_t, element_order
    use vemcontact_material_elastic, only: elastic_matrix
    use vemcontact_element_geometry, only: polygon_signed_area, polygon_centroid
@@ -37,6 +37,8 @@ module vemcontact_post_estimate
    public :: error_estimate_t, estimate_error, recover_stress
    ! shared with the second-order estimate (vemcontact_post_estimate2)
    public :: node_cells, summarize, grow, compliance
+   ! public for its unit test
+   public :: descending_order
 
    !> The estimate of one solution.
    type :: error_estimate_t
@@ -332,44 +334,39 @@ contains
       cinv(3, 3) = 1.0_wp/d(3, 3)
    end subroutine compliance
 
-   !> Indices that sort `w` in descending order (heap sort, O(n log n)).
+   !> Indices that sort the non-negative `w` in descending order, equal values in index
+   !> order (LSD radix sort, O(n)).
    pure function descending_order(w) result(idx)
       real(wp), intent(in) :: w(:)
       integer(ip), allocatable :: idx(:)
-      integer(ip) :: n, i, t, last
+      integer(ip), allocatable :: tmp(:), count(:)
+      integer(i8), allocatable :: key(:)
+      integer(ip) :: n, i, d
+      integer :: pass
       n = size(w)
-      allocate (idx(n))
-      idx = [(i, i=1, n)]
-      ! a min-heap on w: popping the smallest to the end leaves the order descending
-      do i = n/2, 1, -1
-         call sift(i, n)
+      allocate (idx(n), tmp(n), key(n), count(0:65536))
+      ! the bit patterns of non-negative doubles order like their values; complemented,
+      ! an ascending sort puts the largest first.  Four stable counting passes of 16 bits
+      ! (least significant first) keep equal values in index order.
+      do i = 1, n
+         key(i) = not(transfer(w(i), 0_i8))
+         idx(i) = i
       end do
-      do last = n, 2, -1
-         t = idx(1)
-         idx(1) = idx(last)
-         idx(last) = t
-         call sift(1_ip, last - 1)
-      end do
-   contains
-      pure subroutine sift(start, nn)
-         integer(ip), intent(in) :: start, nn
-         integer(ip) :: root, child, tt
-         root = start
-         do
-            child = 2*root
-            if (child > nn) exit
-            if (child < nn) then
-               if (w(idx(child + 1)) < w(idx(child))) child = child + 1
-            end if
-            if (w(idx(child)) < w(idx(root))) then
-               tt = idx(root)
-               idx(root) = idx(child)
-               idx(child) = tt
-               root = child
-            else
-               exit
-            end if
+      do pass = 0, 3
+         count = 0
+         do i = 1, n
+            d = int(ibits(key(idx(i)), 16*pass, 16), ip)
+            count(d + 1) = count(d + 1) + 1
          end do
-      end subroutine sift
+         do d = 1, 65536
+            count(d) = count(d) + count(d - 1)
+         end do
+         do i = 1, n
+            d = int(ibits(key(idx(i)), 16*pass, 16), ip)
+            count(d) = count(d) + 1
+            tmp(count(d)) = idx(i)
+         end do
+         idx = tmp
+      end do
    end function descending_order
 end module vemcontact_post_estimate
