@@ -565,8 +565,19 @@ def report(lin, hz, vor, mach, when, elapsed, path):
     w("measures the codes, not an ill-conditioned mesh. Both codes read the same")
     w("`mesh.inp` and the same model lines; the CalculiX deck adds only `*NODE PRINT, U`.")
     w("")
-    w(f"Run {lin[0].get('run', '?')}, {lin[0].get('rounds', 1)} alternating rounds, load "
-      f"{min(r.get('load_min', 0) for r in lin)}-{max(r.get('load_max', 0) for r in lin)}.")
+    runs = {}
+    for r in lin:
+        runs.setdefault(r.get('run', '?'), []).append(r)
+    if len(runs) == 1:
+        w(f"Run {lin[0].get('run', '?')}, {lin[0].get('rounds', 1)} alternating rounds, load "
+          f"{min(r.get('load_min', 0) for r in lin)}-{max(r.get('load_max', 0) for r in lin)}.")
+    else:
+        # rows kept from earlier runs (a run of a subset of the sizes replaces only its own)
+        parts = [f"{', '.join(str(r['n']) + ' x ' + str(r['n']) for r in rows)}: run {run}, "
+                 f"{rows[0].get('rounds', 1)} alternating rounds, load "
+                 f"{min(r.get('load_min', 0) for r in rows)}-{max(r.get('load_max', 0) for r in rows)}"
+                 for run, rows in runs.items()]
+        w("Rows of more than one run: " + "; ".join(parts) + ".")
     w("")
     w("| n x n | unknowns | ccx equations | vemcontact (solver) | ccx (threads) | time ratio | vemcontact peak | ccx peak | memory ratio | load |")
     w("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
