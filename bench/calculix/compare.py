@@ -9,8 +9,9 @@ and builds vemcontact); by hand, from the repository root:
         [--residual-max 500]
 
 Writes bench/results/calculix_linear.csv, calculix_voronoi.csv, calculix_hertz.csv,
-calculix_runs.csv (every timed run), calculix_phases.csv (vemcontact's phases of its
-fastest run of each case), bench/calculix/figures/calculix_scaling.png and
+calculix_runs.csv (every timed run, added to those of the earlier runs),
+calculix_phases.csv (vemcontact's phases of its fastest run of each case, likewise),
+bench/calculix/figures/calculix_scaling.png and
 docs/calculix-comparison.md.  `--hertz` with no name (or `--voronoi` with no
 size) keeps that part's rows of the previous run (its CSV) in the page, with their date.
 
@@ -786,14 +787,11 @@ def main():
     for name, rows in (("calculix_linear.csv", lin), ("calculix_hertz.csv", hz), ("calculix_voronoi.csv", vor)):
         if rows:
             write_csv(res / name, rows)
-    # every run and phase table: this run's rows replace those of the same cases
-    # (a Hertz case "hertz_X" owns "hertz_X_small" and "hertz_X_finite"), others are kept
+    # every run and phase table: this run's rows are added to those of the earlier runs
+    # (each row names its run), so that the runs the docs quote stay on record
     for name, new in (("calculix_runs.csv", RUNS), ("calculix_phases.csv", PHASES)):
         if new:
-            cases = {r["case"] for r in new}
-            old = [r for r in read_csv(res / name) if r["case"] not in cases
-                   and r["case"].rsplit("_", 1)[0] not in cases]
-            write_csv(res / name, old + [dict(run=stamp, **r) for r in new])
+            write_csv(res / name, read_csv(res / name) + [dict(run=stamp, **r) for r in new])
     if a.no_report:
         return
     lin = lin or read_csv(res / "calculix_linear.csv")
