@@ -115,8 +115,8 @@ contains
       ! loop is most of the assembly time)
       do l = 1, n
          ! (t/|E|) D b_l, b_l = |E| B_l = [[qx, 0], [0, qy], [qy, qx]]: the sums of
-         ! matmul(d, b_l) in the same order without the zero terms (matmul's inline
-         ! loops stored and reloaded every partial sum)
+         ! matmul(d, b_l) in the same order without the zero terms (gfortran's inline
+         ! matmul would store and reload every partial sum)
          qx = work(2*l - 1)
          qy = work(2*l)
          cl(:, 1) = (thick/area)*(d(:, 1)*qx + d(:, 3)*qy)

@@ -226,7 +226,7 @@ contains
    end subroutine recover_stress
 
    !> q^T C q for a 3 x 3 C: dot_product(q, matmul(c, q)) with the same sums in the
-   !> same order, written out (gfortran's inline matmul stored and reloaded every
+   !> same order, written out (gfortran's inline matmul would store and reload every
    !> partial sum of this hot loop).
    pure real(wp) function energy_density(c, q) result(r)
       real(wp), intent(in) :: c(3, 3), q(3)

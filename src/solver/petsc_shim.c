@@ -165,8 +165,8 @@ int vc_petsc_initialize(const char *options)
         argv_store[2] = NULL;
         singleton_mpi_defaults();
         /* before PetscInitialize (the options database may be filled before it), so
-         * that the options PetscInitialize itself reads take effect: -log_view set
-         * after it left logging off and PetscFinalize failing on every process */
+         * that the options PetscInitialize itself reads take effect (-log_view set
+         * after it would leave logging off and PetscFinalize failing on every process) */
         if (options && options[0] && PetscOptionsInsertString(NULL, options)) {
             snprintf(init_message, sizeof init_message, "PETSc options could not be read: '%.200s'", options);
             st = VC_PETSC_ERROR;
