@@ -4,6 +4,7 @@
 module vemcontact_element_quad4
    use vemcontact_kinds, only: wp
    use vemcontact_element_geometry, only: polygon_signed_area
+   use vemcontact_element_bmatrix, only: add_btdb, b_times
    implicit none
    private
 
@@ -23,8 +24,8 @@ contains
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick
       real(wp), intent(out) :: ke(:, :)
       integer, intent(out) :: info
-      real(wp) :: b(3, 8), detj, nsh(4), db(3, 2), w, dxi, dyi
-      integer :: g, i, j, r, c
+      real(wp) :: b(3, 8), detj, nsh(4)
+      integer :: g, i, j
       ke = 0.0_wp
       info = 0
       if (.not. polygon_signed_area(xy) > 0.0_wp) then
@@ -38,24 +39,8 @@ contains
             info = 3
             return
          end if
-         ! ke += t det J B^T D B on the upper block triangle, with B's zeros skipped: B_j's
-         ! columns are (dx, 0, dy) and (0, dy, dx); the sums of matmul(transpose(b),
-         ! matmul(d, b)) in the same order without the zero terms
-         w = thick*detj
-         do j = 1, 4
-            c = 2*j - 1
-            db(:, 1) = d(:, 1)*b(1, c) + d(:, 3)*b(3, c)
-            db(:, 2) = d(:, 2)*b(2, c + 1) + d(:, 3)*b(3, c + 1)
-            do i = 1, j
-               r = 2*i - 1
-               dxi = b(1, r)
-               dyi = b(2, r + 1)
-               ke(r, c) = ke(r, c) + w*(dxi*db(1, 1) + dyi*db(3, 1))
-               ke(r + 1, c) = ke(r + 1, c) + w*(dyi*db(2, 1) + dxi*db(3, 1))
-               ke(r, c + 1) = ke(r, c + 1) + w*(dxi*db(1, 2) + dyi*db(3, 2))
-               ke(r + 1, c + 1) = ke(r + 1, c + 1) + w*(dyi*db(2, 2) + dxi*db(3, 2))
-            end do
-         end do
+         ! ke += t det J B^T D B on the upper block triangle (mirrored below)
+         call add_btdb(b, d, thick*detj, ke)
       end do
       do j = 1, 8
          do i = j + 1, 8
@@ -91,7 +76,7 @@ contains
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
       real(wp), intent(out) :: sig(3)
       real(wp) :: b(3, 8), detj, nsh(4), eps(3)
-      integer :: g, i
+      integer :: g
       sig = 0.0_wp
       do g = 1, 4
          call quad4_point(xy, gp*xi_node(g), gp*eta_node(g), nsh, b, detj)
@@ -99,14 +84,7 @@ contains
             sig = 0.0_wp
             return
          end if
-         ! B u and D (B u): matmul's sums in the same order, B's zeros skipped
-         eps = 0.0_wp
-         do i = 1, 4
-            eps(1) = eps(1) + b(1, 2*i - 1)*ue(2*i - 1)
-            eps(2) = eps(2) + b(2, 2*i)*ue(2*i)
-            eps(3) = eps(3) + b(3, 2*i - 1)*ue(2*i - 1)
-            eps(3) = eps(3) + b(3, 2*i)*ue(2*i)
-         end do
+         eps = b_times(b, ue(1:8))
          sig = sig + (d(:, 1)*eps(1) + d(:, 2)*eps(2) + d(:, 3)*eps(3))
       end do
       sig = 0.25_wp*sig

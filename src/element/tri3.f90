@@ -4,6 +4,7 @@
 !> tests can use the identity "VEM on a triangle = CST" as a cross-check.
 module vemcontact_element_tri3
    use vemcontact_kinds, only: wp
+   use vemcontact_element_bmatrix, only: add_btdb, b_times
    implicit none
    private
 
@@ -16,35 +17,17 @@ contains
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick
       real(wp), intent(out) :: ke(:, :)
       integer, intent(out) :: info
-      real(wp) :: b(3, 6), area, db(3, 2), w, dxi, dyi
-      integer :: i, j, r, c
+      real(wp) :: b(3, 6), area
+      integer :: i, j
+      ke = 0.0_wp
       info = 0
       call tri3_b(xy, b, area)
       if (.not. area > 0.0_wp) then
-         ke = 0.0_wp
          info = 1
          return
       end if
-      ! every entry of ke(1:6, 1:6) is written below; a larger ke is zero around it
-      if (size(ke, 1) > 6 .or. size(ke, 2) > 6) ke = 0.0_wp
-      ! A t B^T D B on the upper block triangle, B's zeros skipped: B_j's columns are
-      ! (b, 0, c) and (0, c, b); the sums of matmul(transpose(b), matmul(d, b)) in the
-      ! same order without the zero terms; the mirror below writes the rest
-      w = area*thick
-      do j = 1, 3
-         c = 2*j - 1
-         db(:, 1) = d(:, 1)*b(1, c) + d(:, 3)*b(3, c)
-         db(:, 2) = d(:, 2)*b(2, c + 1) + d(:, 3)*b(3, c + 1)
-         do i = 1, j
-            r = 2*i - 1
-            dxi = b(1, r)
-            dyi = b(2, r + 1)
-            ke(r, c) = w*(dxi*db(1, 1) + dyi*db(3, 1))
-            ke(r + 1, c) = w*(dyi*db(2, 1) + dxi*db(3, 1))
-            ke(r, c + 1) = w*(dxi*db(1, 2) + dyi*db(3, 2))
-            ke(r + 1, c + 1) = w*(dyi*db(2, 2) + dxi*db(3, 2))
-         end do
-      end do
+      ! A t B^T D B on the upper block triangle, mirrored below
+      call add_btdb(b, d, area*thick, ke)
       do j = 1, 6
          do i = j + 1, 6
             ke(i, j) = ke(j, i)
@@ -57,18 +40,10 @@ contains
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
       real(wp), intent(out) :: sig(3)
       real(wp) :: b(3, 6), area, eps(3)
-      integer :: i
       call tri3_b(xy, b, area)
       sig = 0.0_wp
       if (.not. area > 0.0_wp) return
-      ! B u and D (B u): matmul's sums in the same order, B's zeros skipped
-      eps = 0.0_wp
-      do i = 1, 3
-         eps(1) = eps(1) + b(1, 2*i - 1)*ue(2*i - 1)
-         eps(2) = eps(2) + b(2, 2*i)*ue(2*i)
-         eps(3) = eps(3) + b(3, 2*i - 1)*ue(2*i - 1)
-         eps(3) = eps(3) + b(3, 2*i)*ue(2*i)
-      end do
+      eps = b_times(b, ue(1:6))
       sig = d(:, 1)*eps(1) + d(:, 2)*eps(2) + d(:, 3)*eps(3)
    end subroutine tri3_stress
 
