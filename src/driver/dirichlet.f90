@@ -10,7 +10,7 @@ module vemcontact_driver_dirichlet
    implicit none
    private
 
-   public :: apply_dirichlet, constrain_rhs, constrain_matrix, dirichlet_moves, constrain_share, kept_diagonal
+   public :: apply_dirichlet, constrain_rhs, constrain_matrix, dirichlet_moves, kept_diagonal
 
 contains
 
@@ -59,38 +59,29 @@ contains
       end do
    end subroutine dirichlet_moves
 
-   !> constrain_matrix for one process's share `a` of a matrix (the matrix is the sum
-   !> of the shares): the couplings of fixed dofs zeroed; the fixed diagonal, the
-   !> kept diagonal of the whole matrix's `diag` (its diagonal at the fixed dofs), is
-   !> held by the share with `owner` only and zero in the others.
-   pure subroutine constrain_share(a, fixed, diag, owner)
-      type(sym_csc_t), intent(inout) :: a
-      logical, intent(in) :: fixed(:)
-      real(wp), intent(in) :: diag(:)
-      logical, intent(in) :: owner
-      integer(ip) :: j
-      integer(i8) :: k
-      do j = 1, a%n
-         do k = a%col_ptr(j), a%col_ptr(j + 1) - 2
-            if (fixed(j) .or. fixed(a%row_idx(k))) a%val(k) = 0.0_wp
-         end do
-         k = a%col_ptr(j + 1) - 1
-         if (fixed(j)) a%val(k) = merge(kept_diagonal(diag(j)), 0.0_wp, owner)
-      end do
-   end subroutine constrain_share
-
    !> Zero the couplings of fixed dofs; their diagonal stays (1 where it is not positive).
-   pure subroutine constrain_matrix(a, fixed)
+   !> For one process's share `a` of a matrix (the matrix is the sum of the shares),
+   !> `diag` is the whole matrix's diagonal (read at the fixed dofs): the fixed diagonal,
+   !> kept from it, is held by the share with `owner` and zero in the others.
+   pure subroutine constrain_matrix(a, fixed, diag, owner)
       type(sym_csc_t), intent(inout) :: a
       logical, intent(in) :: fixed(:)
+      real(wp), intent(in), optional :: diag(:)
+      logical, intent(in), optional :: owner
       integer(ip) :: j
       integer(i8) :: k
       do j = 1, a%n
          do k = a%col_ptr(j), a%col_ptr(j + 1) - 2
             if (fixed(j) .or. fixed(a%row_idx(k))) a%val(k) = 0.0_wp
          end do
+         if (.not. fixed(j)) cycle
          k = a%col_ptr(j + 1) - 1
-         if (fixed(j)) a%val(k) = kept_diagonal(a%val(k))
+         if (present(diag)) then
+            a%val(k) = 0.0_wp
+            if (owner) a%val(k) = kept_diagonal(diag(j))
+         else
+            a%val(k) = kept_diagonal(a%val(k))
+         end if
       end do
    end subroutine constrain_matrix
 

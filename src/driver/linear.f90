@@ -32,7 +32,7 @@ module vemcontact_driver_linear
    use vemcontact_driver_load_state, only: load_state_t
    use vemcontact_driver_assembly, only: assemble_stiffness, assemble_loads
    use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_rhs, constrain_matrix, dirichlet_moves, &
-      constrain_share, kept_diagonal
+      kept_diagonal
    use vemcontact_driver_partition, only: partition_t, partition_mesh
    use vemcontact_clock, only: wall_time
    use vemcontact_contact_active_set, only: contact_state_t
@@ -76,8 +76,9 @@ module vemcontact_driver_linear
       logical :: dist = .false.
       !> distributed: the partition of the mesh over the processes
       type(partition_t) :: partition
-      !> distributed: the diagonal of the whole stiffness (summed over the processes)
-      real(wp), allocatable :: kdiag(:)
+      !> distributed: the largest |diagonal entry| of the whole stiffness (its diagonal
+      !> summed over the processes)
+      real(wp) :: kmax_whole = 0
       !> the solver was chosen by `auto`: if it fails in a step without contact, the
       !> step is solved again with CHOLMOD (one process only; see solve_state)
       logical :: fallback = .false.
@@ -94,7 +95,7 @@ module vemcontact_driver_linear
       procedure :: solve_system
       procedure :: elastic_times
       procedure :: largest_elastic_diagonal
-      procedure, private :: constrain_distributed
+      procedure, private :: constrain
       procedure, private :: solve_linear
    end type linear_system_t
 
@@ -150,6 +151,7 @@ contains
       integer(i8), allocatable :: adj_ptr(:), ptr2(:)
       integer(ip), allocatable :: adj(:), adj2(:), extra(:, :)
       real(wp) :: t0, t1, failed(1)
+      real(wp), allocatable :: kdiag(:)
       type(error_t), allocatable :: err2
       integer(ip) :: j
 
@@ -199,8 +201,9 @@ contains
                                                          'process only', err_solver)
             return
          end if
-         self%kdiag = [(self%k%val(self%k%col_ptr(j + 1) - 1), j=1, self%k%n)]
-         call self%solver%sum_over_ranks(self%kdiag, error)
+         kdiag = [(self%k%val(self%k%col_ptr(j + 1) - 1), j=1, self%k%n)]
+         call self%solver%sum_over_ranks(kdiag, error)
+         self%kmax_whole = max(0.0_wp, maxval(abs(kdiag)))
       else
          call assemble_stiffness(model, self%k, error)
       end if
@@ -322,12 +325,8 @@ contains
          call check_supports(model, self%part, self%nparts, fixed, error)
          if (allocated(error)) return
          call copy_values(self%k, self%kb)
-         if (self%dist) then
-            call self%constrain_distributed(self%kb, self%kdiag, fixed, st%prescribed, f, .true., error)
-            if (allocated(error)) return
-         else
-            call apply_dirichlet(self%kb, fixed, st%prescribed, f)
-         end if
+         call self%constrain(self%kb, fixed, st%prescribed, f, .true., error)
+         if (allocated(error)) return
          t0 = wall_time()
          call self%solver%factorize(self%kb, error)
          if (allocated(error)) return
@@ -342,12 +341,8 @@ contains
       else
          ! same constraints: only the right-hand side changes (kb is already reduced,
          ! so the known values are moved with the unreduced stiffness)
-         if (self%dist) then
-            call self%constrain_distributed(self%k, self%kdiag, fixed, st%prescribed, f, .false., error)
-            if (allocated(error)) return
-         else
-            call constrain_rhs(self%k, fixed, st%prescribed, f)
-         end if
+         call self%constrain(self%k, fixed, st%prescribed, f, .false., error)
+         if (allocated(error)) return
       end if
       t0 = wall_time()
       call self%solver%solve(f, u, error)
@@ -372,8 +367,6 @@ contains
       logical, intent(out) :: rebuilt
       type(error_t), allocatable, intent(out) :: error
       logical :: ok, owner
-      real(wp), allocatable :: d(:)
-      integer(ip) :: j
       rebuilt = .false.
       ! distributed: the springs in rank 0's share (the others only check the pattern)
       owner = self%solver%rank == 0
@@ -395,30 +388,35 @@ contains
       call contact%add_rhs(f)
       call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part))
       if (allocated(error)) return
-      if (self%dist) then
-         ! the whole diagonal of K + the springs at the fixed dofs
-         d = pack([(self%kb%val(self%kb%col_ptr(j + 1) - 1), j=1, self%kb%n)], fixed)
-         call self%solver%sum_over_ranks(d, error)
-         if (allocated(error)) return
-         call self%constrain_distributed(self%kb, unpack(d, fixed, 0.0_wp), fixed, prescribed, f, .true., error)
-         return
-      end if
-      call constrain_rhs(self%kb, fixed, prescribed, f)
-      call constrain_matrix(self%kb, fixed)
+      call self%constrain(self%kb, fixed, prescribed, f, .true., error)
    end subroutine contact_matrix
 
-   !> Distributed: the whole right-hand side f (whole loads on entry) of the prescribed
-   !> `value`s at the `fixed` dofs from this process's share `a`, and with `matrix` the
-   !> share constrained; `diag`: the whole matrix's diagonal (read at the fixed dofs).
-   subroutine constrain_distributed(self, a, diag, fixed, value, f, matrix, error)
+   !> The right-hand side f (the loads on entry) of the prescribed `value`s at the
+   !> `fixed` dofs, from the unconstrained matrix `a`, and with `matrix` `a` constrained.
+   !> Distributed, `a` is this process's share: the moves and the diagonal at the fixed
+   !> dofs are summed over the processes, and f comes out whole on every process.
+   subroutine constrain(self, a, fixed, value, f, matrix, error)
       class(linear_system_t), intent(in) :: self
       type(sym_csc_t), intent(inout) :: a
-      real(wp), intent(in) :: diag(:), value(:)
       logical, intent(in) :: fixed(:), matrix
+      real(wp), intent(in) :: value(:)
       real(wp), intent(inout) :: f(:)
       type(error_t), allocatable, intent(out) :: error
-      real(wp), allocatable :: g(:)
+      real(wp), allocatable :: g(:), d(:), diag(:)
       integer(ip) :: j
+      if (.not. self%dist) then
+         if (matrix) then
+            call apply_dirichlet(a, fixed, value, f)
+         else
+            call constrain_rhs(a, fixed, value, f)
+         end if
+         return
+      end if
+      ! the whole matrix's diagonal at the fixed dofs
+      d = pack([(a%val(a%col_ptr(j + 1) - 1), j=1, a%n)], fixed)
+      call self%solver%sum_over_ranks(d, error)
+      if (allocated(error)) return
+      diag = unpack(d, fixed, 0.0_wp)
       allocate (g(size(f)), source=0.0_wp)
       call dirichlet_moves(a, fixed, value, g)
       call self%solver%sum_over_ranks(g, error)
@@ -430,8 +428,8 @@ contains
             f(j) = f(j) + g(j)
          end if
       end do
-      if (matrix) call constrain_share(a, fixed, diag, self%solver%rank == 0)
-   end subroutine constrain_distributed
+      if (matrix) call constrain_matrix(a, fixed, diag, self%solver%rank == 0)
+   end subroutine constrain
 
    subroutine numeric_factorize(self, error)
       class(linear_system_t), intent(inout) :: self
@@ -471,7 +469,7 @@ contains
       integer(ip) :: j
       kmax = 0.0_wp
       if (self%dist) then
-         if (self%k%n > 0) kmax = maxval(abs(self%kdiag))
+         kmax = self%kmax_whole
          return
       end if
       do j = 1, self%k%n

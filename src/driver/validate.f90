@@ -241,7 +241,7 @@ contains
                 trim(adjustl(b))//')'
          return
       end if
-      call polygon_defect(xy, kind, i, j, dist)
+      call polygon_defect(xy, kind, i, j, dist, h)
       if (kind == defect_none) then
          b = ''
       else

@@ -131,10 +131,12 @@ contains
    !> (side k runs from vertex k to vertex k+1), and the distance found, which is
    !> at most geom_rtol*h.  defect_fold gives the vertex i whose two sides fold.
    !> A zero-length side is defect_coincident with j = i+1 (or i = 1, j = n).
-   pure subroutine polygon_defect(xy, kind, i, j, dist)
+   !> `diameter` (optional): polygon_diameter(xy), when the caller has it already.
+   pure subroutine polygon_defect(xy, kind, i, j, dist, diameter)
       real(wp), intent(in) :: xy(:, :)
       integer, intent(out) :: kind, i, j
       real(wp), intent(out) :: dist
+      real(wp), intent(in), optional :: diameter
       ! the vertices relative to the first and in units of the diameter: every
       ! coordinate within [-1, 1], so squared distances neither overflow nor lose the
       ! tolerance (geom_rtol^2 = 1e-20) to underflow, and no square root is needed
@@ -147,7 +149,11 @@ contains
       j = 0
       dist = 0.0_wp
       if (n < 3) return
-      h = polygon_diameter(xy)
+      if (present(diameter)) then
+         h = diameter
+      else
+         h = polygon_diameter(xy)
+      end if
       if (h <= 0.0_wp) return
       tol2 = geom_rtol**2
       do k = 1, n

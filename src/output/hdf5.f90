@@ -300,7 +300,8 @@ contains
    !> step (the paper's Table 1 and the log's iteration lines): iteration, active
    !> (closed slave entries), changed, residual (relative), max_penetration,
    !> max_pressure, step (line search), factorized (1: a numeric factorization was
-   !> paid), rebuilt (1: the matrix pattern was rebuilt), time (wall seconds).  Call after write_contact of the step's pairs.
+   !> paid), rebuilt (1: the matrix pattern was rebuilt), time (wall seconds).  Call
+   !> after write_contact of the step's pairs.
    subroutine h5_write_iterations(self, istep, records, error)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep

@@ -5,7 +5,7 @@ program test_dirichlet
    use vemcontact_kinds, only: wp, i8
    use vemcontact_testing, only: checker_t
    use vemcontact_sparse_matrix, only: sym_csc_t
-   use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_share, dirichlet_moves
+   use vemcontact_driver_dirichlet, only: apply_dirichlet, constrain_matrix, dirichlet_moves
    implicit none
    type(checker_t) :: t
    type(sym_csc_t) :: a
@@ -62,8 +62,8 @@ contains
       call dirichlet_moves(s2, fx, v, g)
       call apply_dirichlet(whole, fx, v, fw)
       call t%close(1.0_wp + g(2), fw(2), 1.0e-15_wp, 'moves of the shares add up (free row)')
-      call constrain_share(s1, fx, diag, .true.)
-      call constrain_share(s2, fx, diag, .false.)
+      call constrain_matrix(s1, fx, diag, .true.)
+      call constrain_matrix(s2, fx, diag, .false.)
       call t%close(maxval(abs(s1%val + s2%val - whole%val)), 0.0_wp, 0.0_wp, &
                    'constrained shares add up to the constrained matrix', atol=1.0e-15_wp)
       call t%close(s2%val(1), 0.0_wp, 0.0_wp, 'fixed diagonal held by the owner only', atol=0.0_wp)
