@@ -20,9 +20,10 @@ module vemcontact_contact_iteration
                                        hold_nodes, is_cycle, conditioning_verdict, &
                                        conditioning_hint, residual_norm, cond_ok, cond_warn, &
                                        near_key, pairing_drift, &
-                                       cond_stop, cond_stop_penalty
+                                       cond_stop, cond_stop_penalty, nonconvergence_hint, multiplier_cg_limit
    use vemcontact_linalg_gmres, only: linear_operator_t, gmres, gmres_result_t
    use vemcontact_linalg_norms, only: safe_norm2
+   use vemcontact_linalg_cg, only: pcg, cg_result_t
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    implicit none
@@ -126,6 +127,18 @@ module vemcontact_contact_iteration
       end function kmax_i
    end interface
 
+   !> The condensed compliance S = A M^-1 A^T of the HARD entries at the system's
+   !> current factor M (multiplier_step), preconditioned by their springs k.
+   type, extends(linear_operator_t) :: compliance_t
+      class(contact_system_t), pointer :: sys => null()
+      type(contact_state_t), pointer :: contact => null()
+      logical, pointer :: fixed(:) => null()
+      logical, allocatable :: mask(:)
+   contains
+      procedure :: apply => compliance_apply
+      procedure :: precondition => compliance_precondition
+   end type compliance_t
+
    !> The tangent of the contact iteration on the free dofs (identity on the fixed
    !> ones): the elastic stiffness, the contact springs and, for a Newton step on the
    !> pairing of finite sliding, the sliding part; preconditioned by the system's
@@ -176,7 +189,7 @@ contains
       type(logger_t), intent(inout), optional :: log
       logical, allocatable :: history(:, :), hold(:), held(:)
       integer(ip), allocatable :: iseg_start(:)
-      real(wp), allocatable :: f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:)
+      real(wp), allocatable :: f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:), noise(:), dlam(:)
       real(wp) :: t0, rel, kmax, t_iter, t_fact, t_srch, step, rc_min, overclosure, change, rc, t0s
       logical :: warned, same_matrix, same_pattern, solved, rebuilt, converged, settled
       type(contact_tangent_t) :: op
@@ -190,6 +203,7 @@ contains
       kmax = sys%largest_elastic_diagonal()
       allocate (history(contact%n, 0:maxit), gaps(contact%n, 0:maxit), gfrozen(contact%n))
       allocate (held(contact%n), source=.false.)
+      allocate (noise(contact%n), dlam(contact%n))
       if (allocated(sys%records)) deallocate (sys%records)
       allocate (sys%records(0))
       sys%iterations = 0
@@ -300,18 +314,26 @@ contains
          history(:, it) = contact%active
          gaps(:, it) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
          if (nchanged == 0 .and. contact%has_hard()) then
-            ! HARD: the augmented Lagrangian's Uzawa update, at every iteration that kept
-            ! the active set (the pairing of finite sliding settles meanwhile, at the
-            ! same time); converged once the solve left no overclosure beyond the
-            ! tolerance and the update would change no force by more than the residual
-            ! tolerance (the pressures' accuracy).  The gaps' round-off is excluded: a
-            ! few ulps of the coordinates (the reference gaps) and of the displacements;
-            ! on the dam (coordinates 25 m, K = 4e13 Pa/m) it is worth 1e-6 of the
-            ! forces, which the updates only stir.  Where the pairing is fixed (SMALL
-            ! SLIDING, SURFACE TO SURFACE) the matrix then holds and only the
-            ! right-hand side changes.
-            call contact%augment(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
-                                 16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), overclosure, change)
+            ! HARD: the augmented Lagrangian's multiplier update (multiplier_step), at
+            ! every iteration that kept the active set (the pairing of finite sliding
+            ! settles meanwhile, at the same time); converged once the solve left no
+            ! overclosure beyond the tolerance and the update changed no force by more
+            ! than the residual tolerance (the pressures' accuracy).  The gaps' round-off
+            ! is excluded (gap_noise): a few ulps of the coordinates (the reference
+            ! gaps) and of the displacements, and the forward error of the solve, from
+            ! the elastic forces' round-off: the residual left, at most eps max K_ii
+            ! max|u|, with a margin of 128 (at contrast 1e6 the gaps settled at 0.8 of
+            ! 16 times it; docs/contact-robustness.md).  On the dam (coordinates 25 m, K
+            ! = 4e13 Pa/m) the gaps' round-off is worth 1e-6 of the forces, which the
+            ! updates only stir.
+            ! Where the pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE) the matrix
+            ! then holds and only the right-hand side changes.
+            noise = contact%gap_noise(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
+                                      16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), &
+                                      128.0_wp*min(maxval(abs(r)), epsilon(1.0_wp)*kmax*maxval(abs(u))))
+            call multiplier_step(sys, contact, fixed, noise, dlam, error)
+            if (allocated(error)) return
+            call contact%augment(noise, dlam, overclosure, change)
             converged = rel <= model%controls%residual_tol .and. &
                         overclosure <= model%controls%overclosure_tol .and. change <= model%controls%residual_tol
          else
@@ -335,10 +357,8 @@ contains
       end do
       write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations did not converge in ', maxit, &
          ' iterations (relative residual ', rel, ')'
-      call fatal_error(error, trim(buf)//'; raise MAXIT on *CONTACT CONTROLS or check the penalty'// &
-                       new_line('a')//'  = help: node-to-segment contact with finite sliding re-pairs the '// &
-                       'nodes at every iteration and can alternate where they face master vertices; '// &
-                       'TYPE=SURFACE TO SURFACE (VEM bodies) or SMALL SLIDING keep the pairing fixed', err_solver)
+      call fatal_error(error, trim(buf)//nonconvergence_hint(contact%has_finite_sliding(), contact%has_hard(), &
+                                                             contact%penalty_ratio()), err_solver)
    contains
       !> x = u0 + dx with the factor of the frozen-pairing matrix itself: a solve and
       !> one step of iterative refinement, dx = A^-1 r(u0), then x <- x + A^-1 r(x), with
@@ -490,6 +510,69 @@ contains
       end subroutine report_slid_off
 
    end subroutine solve_contact
+
+   !> The multipliers' step dlam of the HARD entries (vemcontact_contact_active_set,
+   !> augment) that closes their gaps g with the pairing and active set of the last
+   !> solve: S dlam = -g, S = A M^-1 A^T the condensed compliance of the entries at
+   !> the current factor M (the elastic stiffness and the springs), A the rows n.A(xi)
+   !> of the gaps.  Solved by conjugate gradients preconditioned with the springs k
+   !> (each product by S is one solve with the factor), whose first iterate is the
+   !> plain Uzawa update -k g at its best length.  Uzawa alone divides the error of a
+   !> pressure mode by 1 + k c, c its compliance, which is slow for the modes that
+   !> the stiffer body carries (c of the stiff body, k of the soft one: 1.35 per
+   !> update on a curved soft master under a stiff slave, 1.001 at contrast 1e6);
+   !> conjugate gradients solve these few modes in as many steps
+   !> (docs/contact-formulation.md).  Gaps within `noise` (gap_noise) count as zero;
+   !> the iteration stops when every residual gap is within its noise, when the
+   !> compliance has no positive curvature left (round-off), or after
+   !> multiplier_cg_limit products.
+   subroutine multiplier_step(sys, contact, fixed, noise, dlam, error)
+      class(contact_system_t), intent(inout), target :: sys
+      type(contact_state_t), intent(in), target :: contact
+      logical, intent(in), target :: fixed(:)
+      real(wp), intent(in) :: noise(:)
+      real(wp), intent(out) :: dlam(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(compliance_t) :: op
+      type(cg_result_t) :: res
+      real(wp), allocatable :: b(:)
+      op%sys => sys
+      op%contact => contact
+      op%fixed => fixed
+      op%mask = contact%multiplier_entries()
+      ! -g, without the gaps within their round-off
+      b = merge(-contact%gap, 0.0_wp, op%mask .and. abs(contact%gap) > noise)
+      call pcg(op, b, noise, multiplier_cg_limit, dlam, res, error)
+   end subroutine multiplier_step
+
+   !> S v = A M^-1 A^T v on the entries of `mask` (0 elsewhere), one solve with the
+   !> system's current factor M.
+   subroutine compliance_apply(self, x, y)
+      class(compliance_t), intent(inout) :: self
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      type(error_t), allocatable :: error
+      real(wp), allocatable :: w(:), du(:)
+      allocate (w(size(self%fixed)), source=0.0_wp)
+      allocate (du(size(self%fixed)), source=0.0_wp)
+      call self%contact%multiplier_load(self%mask, x, w)
+      where (self%fixed) w = 0.0_wp
+      call self%sys%solve_system(w, du, error)
+      ! a failed solve (the factor solved this system just before) gives no curvature:
+      ! the conjugate gradients stop at their last iterate
+      if (allocated(error)) du = 0.0_wp
+      where (self%fixed) du = 0.0_wp
+      call self%contact%gap_change(self%mask, du, y)
+   end subroutine compliance_apply
+
+   !> y = k x: the plain Uzawa update as the preconditioner.
+   subroutine compliance_precondition(self, x, y, error)
+      class(compliance_t), intent(inout) :: self
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      type(error_t), allocatable, intent(out) :: error
+      y = merge(self%contact%k*x, 0.0_wp, self%mask)
+   end subroutine compliance_precondition
 
    !> Stop when a factor is too ill-conditioned to trust, warn (once: `warned`) when it
    !> costs accuracy (conditioning_verdict); `ratio` is the stiffest closed spring
