@@ -789,16 +789,28 @@ contains
    end subroutine multiplier_load
 
    !> dg = n.A(xi) du for the entries of `mask` at the current pairing (0 elsewhere):
-   !> the change of their frozen gaps by the displacements du.
-   pure subroutine gap_change(self, mask, du, dg)
+   !> the change of their frozen gaps by the displacements du; with `sliding`, minus
+   !> c dxi, the part that the motion of the projection adds (finite sliding:
+   !> dxi = w.du, c = n.t; sliding_tangent is the force of it).
+   pure subroutine gap_change(self, mask, du, dg, sliding)
       class(contact_state_t), intent(in) :: self
       logical, intent(in) :: mask(:)
       real(wp), intent(in) :: du(:)
       real(wp), intent(out) :: dg(:)
-      integer :: i
+      logical, intent(in) :: sliding
+      integer(ip) :: nodes(3)
+      real(wp) :: ve(6)
+      integer :: i, j
       do i = 1, self%n
          dg(i) = 0.0_wp
-         if (mask(i)) dg(i) = frozen_gap(self, i, du) - self%gap0(i)
+         if (.not. mask(i)) cycle
+         dg(i) = frozen_gap(self, i, du) - self%gap0(i)
+         if (.not. sliding) cycle
+         nodes = nodes_of(self, i)
+         do j = 1, 3
+            ve(2*j - 1:2*j) = du(2*nodes(j) - 1:2*nodes(j))
+         end do
+         dg(i) = dg(i) - self%slide_c(i)*dot_product(self%slide_w(:, i), ve)
       end do
    end subroutine gap_change
 

@@ -38,6 +38,9 @@ module vemcontact_contact_iteration
    integer, parameter :: gmres_restart = 10, gmres_maxit = 30
    !> The reduction of the residual a solve aims at (krylov_solve)
    real(wp), parameter :: gmres_reduction = 1.0e-6_wp
+   !> ... and a product by the compliance with finite sliding (compliance_apply): the
+   !> stiff modes that the multiplier step resolves are 1e-3 to 1e-6 of the soft ones
+   real(wp), parameter :: multiplier_reduction = 1.0e-10_wp
 
    !> One iteration, as logged and written to the results.
    type :: iteration_record_t
@@ -134,6 +137,8 @@ module vemcontact_contact_iteration
       type(contact_state_t), pointer :: contact => null()
       logical, pointer :: fixed(:) => null()
       logical, allocatable :: mask(:)
+      !> the solves are Newton steps on the pairing of finite sliding (contact_tangent_t)
+      logical :: sliding = .false.
    contains
       procedure :: apply => compliance_apply
       procedure :: precondition => compliance_precondition
@@ -540,29 +545,51 @@ contains
       op%contact => contact
       op%fixed => fixed
       op%mask = contact%multiplier_entries()
+      op%sliding = contact%has_sliding()
       ! -g, without the gaps within their round-off
       b = merge(-contact%gap, 0.0_wp, op%mask .and. abs(contact%gap) > noise)
       call pcg(op, b, noise, multiplier_cg_limit, dlam, res, error)
    end subroutine multiplier_step
 
    !> S v = A M^-1 A^T v on the entries of `mask` (0 elsewhere), one solve with the
-   !> system's current factor M.
+   !> system's current factor M; with `sliding`, S v = A' J^-1 A^T v with the Newton
+   !> tangent J of the pairing (GMRES preconditioned by the factor, as the solves of
+   !> the iteration) and the gaps' change A' with the projection's motion: the
+   !> stiff modes of a curved master are sensitive to it (3.6 per update without it
+   !> on the soft disc under a stiff block, docs/contact-robustness.md).
    subroutine compliance_apply(self, x, y)
       class(compliance_t), intent(inout) :: self
       real(wp), intent(in) :: x(:)
       real(wp), intent(out) :: y(:)
       type(error_t), allocatable :: error
+      type(contact_tangent_t) :: jt
+      type(gmres_result_t) :: res
       real(wp), allocatable :: w(:), du(:)
+      logical :: solved
       allocate (w(size(self%fixed)), source=0.0_wp)
       allocate (du(size(self%fixed)), source=0.0_wp)
       call self%contact%multiplier_load(self%mask, x, w)
       where (self%fixed) w = 0.0_wp
-      call self%sys%solve_system(w, du, error)
-      ! a failed solve (the factor solved this system just before) gives no curvature:
-      ! the conjugate gradients stop at their last iterate
-      if (allocated(error)) du = 0.0_wp
+      solved = .false.
+      if (self%sliding) then
+         jt%sys => self%sys
+         jt%contact => self%contact
+         jt%fixed => self%fixed
+         jt%sliding = .true.
+         call gmres(jt, w, du, multiplier_reduction*safe_norm2(w), 0.0_wp, gmres_restart, gmres_maxit, &
+                    0.5_wp, res, error)
+         solved = res%converged .and. .not. allocated(error)
+         if (allocated(error)) deallocate (error)
+      end if
+      if (.not. solved) then
+         du = 0.0_wp
+         call self%sys%solve_system(w, du, error)
+         ! a failed solve (the factor solved this system just before) gives no curvature:
+         ! the conjugate gradients stop at their last iterate
+         if (allocated(error)) du = 0.0_wp
+      end if
       where (self%fixed) du = 0.0_wp
-      call self%contact%gap_change(self%mask, du, y)
+      call self%contact%gap_change(self%mask, du, y, solved)
    end subroutine compliance_apply
 
    !> y = k x: the plain Uzawa update as the preconditioner.
