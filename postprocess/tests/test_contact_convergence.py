@@ -180,3 +180,28 @@ def test_accuracy_contact_decks_iterations(exe, tmp_path):
     assert all(c for c in counts.values()), counts
     over = {job: c for job, c in counts.items() if max(c) > MAX_ITERATIONS}
     assert not over, over
+
+
+def test_nonconvergence_help_names_only_what_the_run_can_change(exe, tmp_path):
+    """A run that stops on MAXIT gets help that names only what it can change: a
+    SURFACE TO SURFACE HARD run is not told to use TYPE=SURFACE TO SURFACE or SMALL
+    SLIDING (its pairing is fixed already) but a stiffer augmentation; a LINEAR
+    NODE TO SURFACE run with finite sliding at K h/E = 1e8 is told that its pairing
+    can be fixed and that HARD holds where its penalty does not (the paper's interface
+    decks take 12-37 iterations or none at 1e8, 7-8 with HARD)."""
+    deck = tmp_path / "sts.inp"
+    _hard_blocks(deck, 1e6, "SURFACE TO SURFACE", 5, 7)
+    deck.write_text(deck.read_text().replace("*STEP\n", "*CONTACT CONTROLS, MAXIT=1\n*STEP\n", 1))
+    r, _ = _run(exe, deck, tmp_path)
+    assert r.returncode == 4
+    assert "did not converge in 1 iterations" in r.stderr
+    assert "SURFACE TO SURFACE" not in r.stderr and "SMALL SLIDING" not in r.stderr
+    assert "STIFFNESS SCALE FACTOR" in r.stderr
+    # LINEAR node to segment, finite sliding, K h/E = 1e8 (h = 1/7 the master sides)
+    deck = tmp_path / "stiff.inp"
+    cs.blocks_deck(deck, 1.0e3, 1.0e3, 1.0e8 * 1.0e3 * 7, nx_low=7, nx_up=5)
+    deck.write_text(deck.read_text().replace("*STEP\n", "*CONTACT CONTROLS, MAXIT=1\n*STEP\n", 1))
+    r, _ = _run(exe, deck, tmp_path)
+    assert r.returncode == 4
+    assert "SMALL SLIDING" in r.stderr and "PRESSURE-OVERCLOSURE=HARD" in r.stderr
+    assert "STIFFNESS SCALE FACTOR" not in r.stderr
