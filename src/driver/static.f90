@@ -95,7 +95,7 @@ contains
       integer, allocatable :: parts(:)
       integer :: ip_
       real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:), s_at(:, :)
-      real(wp), allocatable :: e_at(:, :), ku(:), f(:), set_rf(:, :)
+      real(wp), allocatable :: e_at(:, :), ku(:), f(:), set_rf(:, :), fluid(:)
       integer, allocatable :: rf_sets(:)
       type(string_t), allocatable :: set_names(:)
       type(vtu_extras_t) :: extra
@@ -339,6 +339,8 @@ contains
             end if
             do ip_ = 1, size(model%pairs)
                if (.not. sel%contact()) exit
+               ! CFLUIDP with *UPLIFT (an unallocated actual argument is absent)
+               if (allocated(tab%cfluidp)) fluid = pack(tab%cfluidp, tab%pair == ip_)
                write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
                call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error, sel)
                if (allocated(error)) return
@@ -346,7 +348,7 @@ contains
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
-                                     pack(tab%status, tab%pair == ip_), error, sel)
+                                     pack(tab%status, tab%pair == ip_), error, sel, cfluidp=fluid)
                if (allocated(error)) return
             end do
             call h5%write_iterations(istep, sys%records, error)
