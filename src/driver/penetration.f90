@@ -123,8 +123,8 @@ contains
                ' (sum of CFLUIDP * CNAREA)'
             if (uplifts(j)%penetration) then
                write (buf, '(a,a,es12.5,a,i0,a,i0,a,i0,a)') trim(buf), '; water entered ', entered(j), &
-                  ' from the heel (', nopen(j), ' of ', nall(j), ' slave nodes open from the heel, ', pass, &
-                  ' passes)'
+                  ' from the heel (', nopen(j), ' of ', nall(j), ' slave nodes open from the heel; contact '// &
+                  'solved ', pass, ' times)'
             end if
             call log%say(trim(buf))
          end do
