@@ -36,7 +36,7 @@ RHO = 2400.0       # concrete, kg/m^3 (ssnp142)
 
 
 def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, water=None, uplift=None,
-               two_steps=False):
+               two_steps=False, etype="CPE4", pair="NODE TO SURFACE, SMALL SLIDING"):
     """A deck of the quadrilateral block `poly` = heel, toe, top right, top left
     (heel at (0, 0), toe at (B, 0), upstream face x = 0) meshed nx x ny CPE4 on a rigid
     base strip; `water` = reservoir depth on the upstream face (None: dry); `uplift` =
@@ -66,8 +66,8 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
         elems.append((e0 + 1 + i, base0 + 1 + i, base0 + 2 + i, base0 + nx + 3 + i, base0 + nx + 2 + i))
     L = ["*HEADING", "block on a rigid base with water in the joint", "*NODE"]
     L += [f"{n}, {x!r}, {y!r}" for n, x, y in nodes]
-    L += ["*ELEMENT, TYPE=CPE4, ELSET=BLOCK"] + [", ".join(map(str, e)) for e in elems[:e0]]
-    L += ["*ELEMENT, TYPE=CPE4, ELSET=BASE"] + [", ".join(map(str, e)) for e in elems[e0:]]
+    L += [f"*ELEMENT, TYPE={etype}, ELSET=BLOCK"] + [", ".join(map(str, e)) for e in elems[:e0]]
+    L += [f"*ELEMENT, TYPE={etype}, ELSET=BASE"] + [", ".join(map(str, e)) for e in elems[e0:]]
     L += ["*NSET, NSET=BASENODES"] + [str(base0 + 1 + k) for k in range(2 * nx + 2)]
     L += ["*NSET, NSET=FOOT"] + [str(nid(i, 0)) for i in range(nx + 1)]
     L += ["*SURFACE, NAME=SLAVE, TYPE=ELEMENT"] + [f"{1 + i}, S1" for i in range(nx)]
@@ -83,7 +83,7 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
         L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD"]
     else:
         L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{penalty!r}"]
-    L += ["*CONTACT PAIR, INTERACTION=JOINT, TYPE=NODE TO SURFACE, SMALL SLIDING", "SLAVE, MASTER",
+    L += [f"*CONTACT PAIR, INTERACTION=JOINT, TYPE={pair}", "SLAVE, MASTER",
           "*BOUNDARY", "BASENODES, 1, 2", "FOOT, 1"]
     step = ["*STEP", "*STATIC", "*DLOAD", f"BLOCK, GRAV, {G!r}, 0., -1."]
     if two_steps:
@@ -118,13 +118,17 @@ RECT = [(0, 0), (5, 0), (5, 4), (0, 4)]
 W_RECT = RHO * G * 20.0
 
 
-def test_linear_uplift_balance(exe, tmp_path):
+@pytest.mark.parametrize("etype,kind", [("CPE4", "NODE TO SURFACE, SMALL SLIDING"),
+                                       ("CPE4", "NODE TO SURFACE"),
+                                       ("VPE", "SURFACE TO SURFACE")])
+def test_linear_uplift_balance(exe, tmp_path, etype, kind):
     """Linear uplift from a head 2 above the joint at the heel to 0.5 at the toe on a
-    5 x 4 block: U = gamma_w B (2 + 0.5)/2 = 61 312.5 N/m; the base stays closed."""
+    5 x 4 block: U = gamma_w B (2 + 0.5)/2 = 61 312.5 N/m; the base stays closed.  FEM
+    and VEM, node to segment with fixed and finite-sliding pairing, surface to surface."""
     up = "*UPLIFT, INTERACTION=JOINT, UNIT WEIGHT=9810\n0., 0., 2.\n5., 0., 0.5"
     for hard in (False, True):
-        h5, _ = run(exe, block_deck(tmp_path / f"lin{int(hard)}.inp", RECT, 20, 8, hard=hard, uplift=up),
-                    tmp_path)
+        h5, _ = run(exe, block_deck(tmp_path / f"lin{int(hard)}.inp", RECT, 20, 8, hard=hard, uplift=up,
+                                    etype=etype, pair=kind), tmp_path)
         c = pair(h5)
         x = c["coordinates"][:, 0]
         # the formula at every slave node: round-off only

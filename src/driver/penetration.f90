@@ -40,7 +40,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(logger_t), intent(inout), optional :: log
       integer, allocatable :: which(:), nopen(:), nall(:)
-      real(wp), allocatable :: s_tip(:), s_new(:), f(:)
+      real(wp), allocatable :: s_tip(:), s_new(:), f(:), seen(:, :)
       type(iteration_record_t), allocatable :: records(:)
       integer :: pass, j, iterations, factorizations
       real(wp) :: t_fact, t_solve, t_search
@@ -55,7 +55,7 @@ contains
       which = uplift_of_entries(model, contact, uplifts)
       allocate (s_tip(size(uplifts)), s_new(size(uplifts)), source=0.0_wp)
       allocate (nopen(size(uplifts)), nall(size(uplifts)), source=0)
-      allocate (contact%cfluidp(contact%n), f(size(fext)), records(0))
+      allocate (contact%cfluidp(contact%n), f(size(fext)), records(0), seen(size(uplifts), 0))
       iterations = 0
       factorizations = 0
       t_fact = 0.0_wp
@@ -82,6 +82,14 @@ contains
             if (abs(s_new(j) - s_tip(j)) > 0.0_wp) changed = .true.
          end do
          if (.not. changed) exit
+         ! a crack that returns to an earlier length would alternate for ever
+         seen = reshape([seen, s_tip], [size(uplifts), pass])
+         if (any([(all(abs(seen(:, j) - s_new) <= 0.0_wp), j=1, pass)])) then
+            call fatal_error(error, 'error: pressure penetration cycles: the open part of a joint returns '// &
+                             'to an earlier length with the water in it (a crack that closes under its own '// &
+                             'water); try a stiffer joint (the penalty K) or HARD contact', err_solver)
+            return
+         end if
          s_tip = s_new
          do j = 1, size(uplifts)
             if (.not. uplifts(j)%penetration) cycle
