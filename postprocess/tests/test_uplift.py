@@ -36,7 +36,7 @@ RHO = 2400.0       # concrete, kg/m^3 (ssnp142)
 
 
 def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, water=None, uplift=None,
-               two_steps=False, etype="CPE4", pair="NODE TO SURFACE, SMALL SLIDING"):
+               two_steps=False, etype="CPE4", pair="NODE TO SURFACE, SMALL SLIDING", extra=None):
     """A deck of the quadrilateral block `poly` = heel, toe, top right, top left
     (heel at (0, 0), toe at (B, 0), upstream face x = 0) meshed nx x ny CPE4 on a rigid
     base strip; `water` = reservoir depth on the upstream face (None: dry); `uplift` =
@@ -93,6 +93,8 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
         step += ["*DSLOAD", f"UPSTREAM, HP, {GW * water!r}, {water!r}, 0."]
     if uplift is not None:
         step += [uplift]
+    if extra is not None:
+        step += [extra]
     L += step + ["*END STEP"]
     path.write_text("\n".join(L) + "\n")
     return path
@@ -250,6 +252,27 @@ def test_pressure_penetration_matches_gravity_method(exe, tmp_path, nx):
     h50, _ = run(exe, block_deck(tmp_path / "lin.inp", SSNP142, nx, 20, water=9.0, uplift=up0), tmp_path)
     c0 = pair(h50)
     assert np.argmax(c0["STATUS"] == 1) < k
+
+
+def test_cfluidp_in_every_result_file(exe, tmp_path):
+    """CFLUIDP is written beside CPRESS in the contact CSV, the contact VTU and the
+    PRINT CSV (*CONTACT PRINT, CSTR), with the values of the HDF5 file."""
+    import meshio
+    up = "*UPLIFT, INTERACTION=JOINT, UNIT WEIGHT=9810\n0., 0., 3.\n5., 0., 0.\n1., 0."
+    h5, _ = run(exe, block_deck(tmp_path / "files.inp", RECT, 10, 4, uplift=up,
+                                extra="*CONTACT FILE\nCSTR, CDIS\n*CONTACT PRINT\nCSTR"), tmp_path)
+    with h5py.File(h5) as f:
+        g = f["steps/0001/contact/pair_1"]
+        ids, fluid = g["node_ids"][:], g["CFLUIDP"][:]
+    want = dict(zip(ids.tolist(), fluid.tolist()))
+    d = np.genfromtxt(tmp_path / "files_contact_pair1_0001.csv", delimiter=",", names=True, dtype=None,
+                      encoding=None)
+    assert {int(n): v for n, v in zip(d["node"], d["CFLUIDP"])} == want
+    pts = meshio.read(tmp_path / "files_contact_0001.vtu")
+    assert dict(zip(pts.point_data["NODE_ID"].tolist(), pts.point_data["CFLUIDP"].tolist())) == want
+    p = np.genfromtxt(tmp_path / "files_print_0001.csv", delimiter=",", names=True, dtype=None, encoding=None)
+    rows = p[p["variable"] == "CFLUIDP"]
+    assert {int(n): v for n, v in zip(rows["id"], rows["value"])} == want
 
 
 @pytest.mark.parametrize("line,message", [
