@@ -254,6 +254,28 @@ def test_pressure_penetration_matches_gravity_method(exe, tmp_path, nx):
     assert np.argmax(c0["STATUS"] == 1) < k
 
 
+def test_crack_past_the_drains(exe, tmp_path):
+    """ssnp142 with a drain line 1 m from the heel (USBR): the first pass, with the drained
+    diagram, cracks less, but the crack then grows past the drain line, the drains lose
+    their effect (USACE, CADAM) and the joint ends as without drains: the same crack and
+    the same uplift node by node."""
+    nx = 20
+    runs = {}
+    for tag, drain in (("plain", ""), ("drained", "\n1., 0.")):
+        up = f"*UPLIFT, INTERACTION=JOINT, UNIT WEIGHT=9810, PENETRATION\n0., 0., 9.\n5., 0., 0.{drain}"
+        h5, log = run(exe, block_deck(tmp_path / f"{tag}.inp", SSNP142, nx, 20, water=9.0, uplift=up), tmp_path)
+        runs[tag] = (pair(h5), log.read_text())
+    a, b = runs["plain"][0], runs["drained"][0]
+    assert (a["STATUS"] == b["STATUS"]).all()
+    assert np.array_equal(a["CFLUIDP"], b["CFLUIDP"])
+    k = np.argmax(b["STATUS"] == 1)
+    assert b["coordinates"][k - 1, 0] > 1.0, "the crack passed the drain line"
+    # the drained run took a shorter first step: it logged a crack short of the plain one's
+    first = [line for line in runs["drained"][1].splitlines() if "pass 1:" in line]
+    first_plain = [line for line in runs["plain"][1].splitlines() if "pass 1:" in line]
+    assert first and first_plain and first != first_plain
+
+
 def test_cfluidp_in_every_result_file(exe, tmp_path):
     """CFLUIDP is written beside CPRESS in the contact CSV, the contact VTU and the
     PRINT CSV (*CONTACT PRINT, CSTR), with the values of the HDF5 file."""
