@@ -15,7 +15,7 @@ module vemcontact_deck_uplift
    use vemcontact_kinds, only: wp
    use vemcontact_model, only: model_t, uplift_t
    use vemcontact_deck_state, only: deck_parser_t, here, err_here, err_at, field, get_real
-   use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param, has_param, to_upper, squeeze
+   use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param, has_param, squeeze
    use vemcontact_deck_numbers, only: parse_real, num_ok
    use vemcontact_deck_lines, only: advance, skip_data
    use vemcontact_deck_source, only: line_data

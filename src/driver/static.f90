@@ -340,6 +340,7 @@ contains
             do ip_ = 1, size(model%pairs)
                if (.not. sel%contact()) exit
                ! CFLUIDP with *UPLIFT (an unallocated actual argument is absent)
+               if (allocated(fluid)) deallocate (fluid)
                if (allocated(tab%cfluidp)) fluid = pack(tab%cfluidp, tab%pair == ip_)
                write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
                call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error, sel)
