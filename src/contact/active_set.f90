@@ -127,6 +127,9 @@ module vemcontact_contact_active_set
       !> the entry had a master segment at the start of the step and has none at its
       !> end: it slid past the end of an open master surface (set by the driver)
       logical, allocatable :: slid_off(:)
+      !> CFLUIDP: the uplift on each entry (vemcontact_contact_uplift), unallocated
+      !> when no *UPLIFT is in force
+      real(wp), allocatable :: cfluidp(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
       integer(ip), allocatable :: inserted(:)  !< nodes inserted for each pair (SURFACE TO SURFACE)
    contains
@@ -922,6 +925,7 @@ contains
       tab%pair = self%pair
       allocate (tab%copen(self%n), tab%cpress(self%n), tab%cslip(self%n), tab%status(self%n))
       tab%cnarea = self%length*self%thick
+      if (allocated(self%cfluidp)) tab%cfluidp = self%cfluidp
       do i = 1, self%n
          tab%status(i) = merge(1, 0, self%active(i))
          if (self%slid_off(i)) tab%status(i) = 2

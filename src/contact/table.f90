@@ -18,6 +18,9 @@ module vemcontact_contact_table
       !> CNAREA (Abaqus' name): the slave node's undeformed tributary length times the
       !> thickness, the area CPRESS acts on (sum CPRESS * CNAREA = transmitted force)
       real(wp), allocatable :: cnarea(:)
+      !> CFLUIDP: the water pressure in the joint (*UPLIFT), acting on both faces
+      !> beside the effective contact pressure CPRESS; unallocated without uplift
+      real(wp), allocatable :: cfluidp(:)
       integer, allocatable :: status(:)       !< 1 closed, 0 open, 2 slid past the end of the master
       integer, allocatable :: pair(:)
       integer(ip), allocatable :: node(:)     !< internal node index (for the driver)

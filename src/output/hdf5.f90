@@ -255,8 +255,9 @@ contains
 
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
    !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CNAREA
-   !> and STATUS (1 closed, 0 open); then flush.
-   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel)
+   !> and STATUS (1 closed, 0 open), with *UPLIFT CFLUIDP beside CPRESS; then flush.
+   subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel, &
+                               cfluidp)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
@@ -264,6 +265,8 @@ contains
       integer, intent(in) :: status(:)
       type(error_t), allocatable, intent(out) :: error
       type(field_selection_t), intent(in), optional :: sel
+      !> CFLUIDP, the water pressure in the joint (*UPLIFT), written beside CPRESS
+      real(wp), intent(in), optional :: cfluidp(:)
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
@@ -285,6 +288,10 @@ contains
          call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
       if (.not. allocated(error) .and. w%cpress) &
          call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
+      if (present(cfluidp)) then
+         if (.not. allocated(error) .and. w%cpress) &
+            call put_real(self, grp, 'CFLUIDP', shape(cfluidp, hsize_t), cfluidp, error)
+      end if
       if (.not. allocated(error) .and. w%cslip) &
          call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
       if (.not. allocated(error)) call put_real(self, grp, 'CNAREA', shape(cnarea, hsize_t), cnarea, error)
