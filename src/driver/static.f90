@@ -23,6 +23,7 @@ module vemcontact_driver_static
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
    use vemcontact_output_pvd, only: write_pvd
    use vemcontact_output_hdf5, only: h5_writer_t
+   use vemcontact_output_xdmf, only: write_xdmf
    use vemcontact_output_contact, only: write_contact_csv, write_contact_vtu
    use vemcontact_output_selection, only: field_selection_t, step_selection
    use vemcontact_output_print, only: has_print_requests, write_print_csv
@@ -44,6 +45,7 @@ module vemcontact_driver_static
       logical :: solver_fallback = .false.
       logical :: write_matrix = .false.
       logical :: compress_vtu = .true.        !< zlib-compressed .vtu arrays
+      logical :: write_vtu = .true.           !< .vtu and .pvd files (--no-vtu: not)
       !> .false.: a process of a distributed run other than rank 0, which solves with
       !> the others but writes nothing and skips the post-processing
       logical :: write_files = .true.
@@ -72,6 +74,8 @@ contains
          call h5%discard()
       else
          call h5%close(err2)
+         if (.not. allocated(err2)) &
+            call write_xdmf(opts%out_dir//'/'//opts%job//'.xdmf', opts%job//'.h5', model, done, err2)
       end if
       if (allocated(err2)) call append_message(error, '(no HDF5 results file: '//err2%message//')')
    end subroutine run_static
@@ -311,8 +315,8 @@ contains
          sel = step_selection(model, istep)
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%job//trim(buf)
-         call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
-                        s_elem, s_node, error, opts%compress_vtu, extra, sel, indicator=est%indicator)
+         if (opts%write_vtu) call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
+                                            s_elem, s_node, error, opts%compress_vtu, extra, sel, indicator=est%indicator)
          if (allocated(error)) return
          vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
          times = [times, real(istep, wp)]
@@ -328,7 +332,7 @@ contains
             ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per
             ! pair, when a contact field is selected
             tab = contact%table(model, u_out)
-            if (sel%contact()) then
+            if (sel%contact() .and. opts%write_vtu) then
                write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
                call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, &
                                       reshape(u_out, [2, int(model%nnode)]), error, opts%compress_vtu, sel)
@@ -368,7 +372,7 @@ contains
             end if
             if (allocated(error)) return
          end if
-         call write_pvd(base//'.pvd', vtu_files, times, error, parts)
+         if (opts%write_vtu) call write_pvd(base//'.pvd', vtu_files, times, error, parts)
          if (allocated(error)) return
          done = istep
          call log%lap('write')
@@ -382,11 +386,15 @@ contains
       if (opts%write_files) then
          call h5%close(error, complete=.true.)
          if (allocated(error)) return
+         ! JOB.xdmf: the steps of JOB.h5 for ParaView and meshio, read in place
+         call write_xdmf(base//'.xdmf', opts%job//'.h5', model, size(model%steps), error)
+         if (allocated(error)) return
       end if
       call sys%solver%release()
       call log%say('results')
-      call log%say('  '//base//'.pvd')
+      if (opts%write_vtu) call log%say('  '//base//'.pvd')
       call log%say('  '//base//'.h5')
+      call log%say('  '//base//'.xdmf')
    contains
       !> "estimated relative energy error 2.3 %; 50 % of it in 4.1 % of the cells, around (x, y)"
       subroutine say_estimate(e)
