@@ -38,7 +38,7 @@ def main(src, dst):
     order = np.argsort(morton(xy), kind="stable")
     new_id = {ids[o]: n + 1 for n, o in enumerate(order)}
     index = {v: n for n, v in enumerate(ids)}
-    out = lines[:i + 1] + [f"{n + 1}, {xy[o, 0]!r}, {xy[o, 1]!r}" for n, o in enumerate(order)]
+    out = lines[:i + 1] + [f"{n + 1}, {float(xy[o, 0])!r}, {float(xy[o, 1])!r}" for n, o in enumerate(order)]
     out += lines[nend:j + 1]
     k = j + 1
     els = []

@@ -66,14 +66,14 @@ def write_deck(work, ndof):
         np.savetxt(fh, np.column_stack([ids, X.ravel(), Y.ravel()]), fmt="%d, %.17g, %.17g")
         fh.write("*ELEMENT, TYPE=VPE, ELSET=B\n")
         np.savetxt(fh, np.column_stack([np.arange(1, nx * ny + 1), conn]), fmt="%d, %d, %d, %d, %d")
-        fh.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{case.E_deck!r}, {case.nu_deck!r}\n"
+        fh.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{float(case.E_deck)!r}, {float(case.nu_deck)!r}\n"
                  "*SOLID SECTION, ELSET=B, MATERIAL=M, FORMULATION=VEM\n1.0\n*BOUNDARY\n")
         for jj in range(ny + 1):
-            fh.write(f"{jj + 1}, 1, 1, {u[jj, 0]!r}\n{jj + 1}, 2, 2, {u[jj, 1]!r}\n")
+            fh.write(f"{jj + 1}, 1, 1, {float(u[jj, 0])!r}\n{jj + 1}, 2, 2, {float(u[jj, 1])!r}\n")
         fh.write("*STEP\n*STATIC\n*CLOAD\n")
         for n, fi in zip(tip, f):
             if fi != 0.0:
-                fh.write(f"{n}, 2, {fi!r}\n")
+                fh.write(f"{n}, 2, {float(fi)!r}\n")
         fh.write("*NODE FILE\nU\n*END STEP\n")
     return path, f"{nx}x{ny} quads", 2 * n_nodes
 

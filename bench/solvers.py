@@ -73,9 +73,9 @@ def deck_text(work, shape, ndof):
     lines = ["*BOUNDARY"]
     for i in clamp:
         kk = m.index[i]
-        lines += [f"{i}, 1, 1, {u[kk, 0]!r}", f"{i}, 2, 2, {u[kk, 1]!r}"]
+        lines += [f"{i}, 1, 1, {float(u[kk, 0])!r}", f"{i}, 2, 2, {float(u[kk, 1])!r}"]
     lines += ["*STEP", "*STATIC", "*CLOAD"]
-    lines += [f"{i}, 2, {fi!r}" for i, fi in zip(tip, f) if fi != 0.0]
+    lines += [f"{i}, 2, {float(fi)!r}" for i, fi in zip(tip, f) if fi != 0.0]
     deck += "\n".join(lines) + "\n*NODE FILE\nU\n*END STEP\n"
     path = os.path.join(work, "decks", f"{shape}_{ndof:.0e}.inp".replace("+", ""))
     with open(path, "w") as fh:

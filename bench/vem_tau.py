@@ -64,7 +64,7 @@ def with_tau(deck, tau):
     """The deck with STABILIZATION=tau on every *SOLID SECTION line (VEM sections only)."""
     if tau is None:
         return deck
-    return re.sub(r"(?im)^(\*SOLID SECTION,[^\n]*)$", lambda m: m.group(1) + f", STABILIZATION={tau!r}", deck)
+    return re.sub(r"(?im)^(\*SOLID SECTION,[^\n]*)$", lambda m: m.group(1) + f", STABILIZATION={float(tau)!r}", deck)
 
 
 # ---------------------------------------------------------------- 1. example 1
@@ -76,17 +76,17 @@ def ex1_deck(two_d_over_b, formulation, tau):
     s = f"""** bench/vem_tau.py: paper example 1, 2d/b = {two_d_over_b}
 *NODE
 1, 0.0, 0.0
-2, {L / 2 - d!r}, 0.0
-3, {L!r}, 0.0
-4, {L!r}, {b!r}
-5, {L / 2 + d!r}, {b!r}
-6, 0.0, {b!r}
+2, {float(L / 2 - d)!r}, 0.0
+3, {float(L)!r}, 0.0
+4, {float(L)!r}, {float(b)!r}
+5, {float(L / 2 + d)!r}, {float(b)!r}
+6, 0.0, {float(b)!r}
 *ELEMENT, TYPE=VPE, ELSET=BEAM
 1, 1, 2, 5, 6
 2, 2, 3, 4, 5
 *MATERIAL, NAME=UNIT
 *ELASTIC
-{EX1['E']!r}, {EX1['nu']!r}
+{float(EX1['E'])!r}, {float(EX1['nu'])!r}
 *SOLID SECTION, ELSET=BEAM, MATERIAL=UNIT, FORMULATION={formulation}
 1.0
 *BOUNDARY
@@ -95,8 +95,8 @@ def ex1_deck(two_d_over_b, formulation, tau):
 *STEP
 *STATIC
 *CLOAD
-3, 1, {f!r}
-4, 1, {-f!r}
+3, 1, {float(f)!r}
+4, 1, {float(-f)!r}
 *END STEP
 """
     return with_tau(s, tau)

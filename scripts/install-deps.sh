@@ -27,12 +27,16 @@ fi
 if [ -z "${PIP_CERT:-}" ] && [ -f /etc/ssl/certs/ca-certificates.crt ]; then
   export PIP_CERT=/etc/ssl/certs/ca-certificates.crt
 fi
+# The package itself goes in as an editable install (the checkout's postprocess/ is what
+# runs), which puts its console scripts vc-plot, vc-curves, vc-compare, vc-adapt, vc-mesh
+# and vc-paper into .venv/bin: `source .venv/bin/activate` puts them on the PATH.
 req=postprocess/requirements.txt
 stamp=.venv/.requirements.sha256
-want=$(sha256sum "$req" | cut -d' ' -f1)
-if [ ! -x .venv/bin/python ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
-  echo "== installing Python packages from $req into .venv"
+want=$(cat "$req" postprocess/pyproject.toml | sha256sum | cut -d' ' -f1)
+if [ ! -x .venv/bin/python ] || [ ! -x .venv/bin/vc-plot ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
+  echo "== installing Python packages from $req and vctools (editable) into .venv"
   /usr/bin/python3 -m venv .venv
   .venv/bin/python -m pip install -q --disable-pip-version-check -r "$req"
+  .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps -e ./postprocess
   echo "$want" > "$stamp"
 fi

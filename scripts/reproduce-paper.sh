@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Reproduce the tables and figures of Sun et al. (2022): runs the paper's four
 # examples (about 40 runs, each well under a second in Release) and writes
-# docs/paper-reproduction.md and docs/figures/.  Installs nothing: it needs the
+# out/paper/paper-reproduction.md and out/paper/figures/ (give --out docs to update the
+# tracked docs/paper-reproduction.md and docs/figures/).  Installs nothing: it needs the
 # Python environment of scripts/install-deps.sh (.venv) and builds Release if
 # build/vemcontact is missing.
 #   usage: scripts/reproduce-paper.sh [options of python -m vctools.paper]

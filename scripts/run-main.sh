@@ -12,12 +12,12 @@ out=out/$job
 echo "== running $deck"
 ./build/vemcontact -o "$out" "$deck"
 echo "== pictures"
-plot=(PYTHONPATH=postprocess .venv/bin/python -m vctools.plot "$out/$job.pvd" -o "$out/pictures")
+plot=(.venv/bin/vc-plot "$out/$job.pvd" -o "$out/pictures")
 if [ "$deck" = inputs/dam_joint.inp ]; then
   # the paper's figures 13 and 14: displacements and principal stresses of the
   # full-reservoir step, with the joint drawn
-  env "${plot[@]}" --field U:x --field U:y --field S1 --field S3 --units m,Pa --line 4,10,10,4
+  "${plot[@]}" --field U:x --field U:y --field S1 --field S3 --units m,Pa --line 4,10,10,4
 else
-  env "${plot[@]}" --deformed auto
+  "${plot[@]}" --deformed auto
 fi
 echo "== results of $deck: $PWD/$out ($job.pvd for ParaView, $job.h5, $job.log, pictures/)"

@@ -79,7 +79,7 @@ def _rel_include(deck_dir, mesh_path):
 
 def _header(title, mesh_rel, E, nu, formulation, density=False):
     s = (f"** accuracy study (bench/accuracy): {title}\n*HEADING\n{title}\n"
-         f"*INCLUDE, INPUT={mesh_rel}\n*MATERIAL, NAME=M\n*ELASTIC\n{E!r}, {nu!r}\n")
+         f"*INCLUDE, INPUT={mesh_rel}\n*MATERIAL, NAME=M\n*ELASTIC\n{float(E)!r}, {float(nu)!r}\n")
     if density:
         s += "*DENSITY\n1.0\n"
     s += f"*SOLID SECTION, ELSET=B, MATERIAL=M, FORMULATION={formulation}\n1.0\n"
@@ -124,8 +124,8 @@ def manufactured(work, quick=False, families=LINEAR_FAMILIES):
             lines = ["*BOUNDARY"]
             for i in bn:
                 k = m.index[i]
-                lines += [f"{i}, 1, 1, {u[k, 0]!r}", f"{i}, 2, 2, {u[k, 1]!r}"]
-            deck += "\n".join(lines) + f"\n*STEP\n*STATIC\n*DLOAD\nB, GRAV, {g!r}, {d[0]!r}, {d[1]!r}\n*END STEP\n"
+                lines += [f"{i}, 1, 1, {float(u[k, 0])!r}", f"{i}, 2, 2, {float(u[k, 1])!r}"]
+            deck += "\n".join(lines) + f"\n*STEP\n*STATIC\n*DLOAD\nB, GRAV, {float(g)!r}, {float(d[0])!r}, {float(d[1])!r}\n*END STEP\n"
 
             def metrics(res, case=case, order=order):
                 return dict(energy=fields.energy_error(res, case, order), u_l2=fields.u_l2_error(res, case, order))
@@ -198,9 +198,9 @@ def timoshenko(work, quick=False, families=LINEAR_FAMILIES):
             lines = ["*BOUNDARY"]
             for i in clamp:
                 kk = m.index[i]
-                lines += [f"{i}, 1, 1, {u[kk, 0]!r}", f"{i}, 2, 2, {u[kk, 1]!r}"]
+                lines += [f"{i}, 1, 1, {float(u[kk, 0])!r}", f"{i}, 2, 2, {float(u[kk, 1])!r}"]
             lines += ["*STEP", "*STATIC", "*CLOAD"]
-            lines += [f"{i}, 2, {fi!r}" for i, fi in zip(tip, f) if fi != 0.0]
+            lines += [f"{i}, 2, {float(fi)!r}" for i, fi in zip(tip, f) if fi != 0.0]
             deck += "\n".join(lines) + "\n*END STEP\n"
 
             def metrics(res, case=case, tipy=ys, L=L, order=order):
@@ -264,7 +264,7 @@ def lame(work, quick=False, families=LINEAR_FAMILIES):
                     mid = (p1 + p2) / 2
                     on_sym = (p1[0] < tol and p2[0] < tol) or (p1[1] < tol and p2[1] < tol)
                     if not on_sym and math.hypot(*mid) < (a + b) / 2:
-                        lines.append(f"{e}, P{s + 1}, {case.p!r}")
+                        lines.append(f"{e}, P{s + 1}, {float(case.p)!r}")
             deck += "\n".join(lines) + "\n*END STEP\n"
 
             def metrics(res, case=case, order=order):
@@ -394,13 +394,13 @@ def interface(work, quick=False, families=IF_FAMILIES, only=None):
             m = meshes.read_inp(mp)
             deck = (f"** accuracy study (bench/accuracy): interface under uniform compression, rollers\n"
                     f"*HEADING\ninterface, uniaxial strain\n*INCLUDE, INPUT={_rel_include(work + '/decks', mp)}\n"
-                    f"*MATERIAL, NAME=ROCK\n*ELASTIC\n{IF_E!r}, {IF_NU!r}\n"
+                    f"*MATERIAL, NAME=ROCK\n*ELASTIC\n{float(IF_E)!r}, {float(IF_NU)!r}\n"
                     f"*SOLID SECTION, ELSET=LOWER, MATERIAL=ROCK, FORMULATION={FORMULATION[base]}\n1.0\n"
                     f"*SOLID SECTION, ELSET=UPPER, MATERIAL=ROCK, FORMULATION={FORMULATION[base]}\n1.0\n"
                     f"*SURFACE INTERACTION, NAME=INTERFACE\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-                    f"{IF_K!r}\n*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=NODE TO SURFACE\n"
+                    f"{float(IF_K)!r}\n*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=NODE TO SURFACE\n"
                     f"IFACE_SLAVE, IFACE_MASTER\n*BOUNDARY\nBOTTOM, 1, 2\nTOP, 1\nLEFT, 1\nRIGHT, 1\n"
-                    f"*STEP, NAME=COMPRESSION\n*STATIC\n*BOUNDARY\nTOP, 2, 2, {-IF_D!r}\n*END STEP\n")
+                    f"*STEP, NAME=COMPRESSION\n*STATIC\n*BOUNDARY\nTOP, 2, 2, {float(-IF_D)!r}\n*END STEP\n")
             deck = contact_deck(deck, variant)
 
             def metrics(res, p=p, order=order):

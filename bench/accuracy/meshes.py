@@ -89,7 +89,7 @@ def rectangle(workdir, tag, box, shape, n, plane="strain", lloyd=20, formulation
     text = (f'[mesh]\nseed = 7\nlloyd = {lloyd}\nformulation = "{formulation}"\nplane = "{plane}"\n'
             + (f'order = {order}\n' if order != 1 else '') +
             f'title = "accuracy study {tag}"\n\n[[body]]\nname = "B"\n'
-            f'rectangle = [{x0!r}, {y0!r}, {x1!r}, {y1!r}]\n' + body)
+            f'rectangle = [{float(x0)!r}, {float(y0)!r}, {float(x1)!r}, {float(y1)!r}]\n' + body)
     return mesher(text, tag, workdir)
 
 
@@ -106,7 +106,7 @@ def annulus_voronoi(workdir, tag, a, b, cells, lloyd=20, formulation="vem", orde
     pts[no + 1] = (0.0, a)
     pts[0] = (b, 0.0)
     pts[-1] = (a, 0.0)
-    poly = ", ".join(f"[{x!r}, {y!r}]" for x, y in pts)
+    poly = ", ".join(f"[{float(x)!r}, {float(y)!r}]" for x, y in pts)
     text = (f'[mesh]\nseed = 7\nlloyd = {lloyd}\nformulation = "{formulation}"\nplane = "strain"\n'
             + (f'order = {order}\n' if order != 1 else '') +
             f'title = "accuracy study {tag}"\n\n[[body]]\nname = "B"\npolygon = [{poly}]\n'
@@ -167,7 +167,7 @@ def annulus_polar(workdir, tag, a, b, nr, nt, shape, formulation="vem", order=1)
         f.write(f"** polar grid of the quarter annulus {a} <= r <= {b}: {nr} x {nt} {shape}, order {order}\n")
         f.write("*NODE, NSET=NALL\n")
         for k, (xx, yy) in enumerate(zip(xs, ys)):
-            f.write(f"{k + 1}, {xx!r}, {yy!r}\n")
+            f.write(f"{k + 1}, {float(xx)!r}, {float(yy)!r}\n")
         f.write(f"*ELEMENT, TYPE={etype}, ELSET=B\n")
         for e, c in enumerate(cells):
             f.write(f"{e + 1}, " + ", ".join(map(str, c)) + "\n")

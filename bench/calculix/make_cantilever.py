@@ -39,7 +39,7 @@ def mesh_lines(n):
     out = ["*NODE, NSET=NALL"]
     for j in range(n + 1):
         for i in range(n + 1):
-            out.append(f"{i + (n + 1) * j + 1}, {i * h!r}, {j * h!r}")
+            out.append(f"{i + (n + 1) * j + 1}, {float(i * h)!r}, {float(j * h)!r}")
     out.append("*ELEMENT, TYPE=CPE4, ELSET=EALL")
     e = 0
     for j in range(n):
@@ -63,7 +63,7 @@ def model_lines(n):
     return [
         "*MATERIAL, NAME=STEEL",
         "*ELASTIC",
-        f"{E!r}, {NU!r}",
+        f"{float(E)!r}, {float(NU)!r}",
         "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
         "1.0",
         "*BOUNDARY",
@@ -84,7 +84,7 @@ def main():
         f"** cantilever {n} x {n} CPE4, L = {L}, E = {E}, nu = {NU}, tip shear {P}",
         "*INCLUDE, INPUT=mesh.inp",
     ] + model_lines(n)
-    step = ["*STEP", "*STATIC", "*CLOAD"] + [f"{k}, 2, {f!r}" for k, f in tip_loads(n)]
+    step = ["*STEP", "*STATIC", "*CLOAD"] + [f"{k}, 2, {float(f)!r}" for k, f in tip_loads(n)]
     (a.outdir / "vc.inp").write_text("\n".join(head + step + ["*END STEP"]) + "\n")
     (a.outdir / "ccx.inp").write_text(
         "\n".join(head + step + ["*NODE PRINT, NSET=NALL", "U", "*END STEP"]) + "\n")

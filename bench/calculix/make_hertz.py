@@ -123,7 +123,7 @@ def main():
             out.append(line)
             i += 1
             k = lines[i].split(",")[0].strip()
-            out.append(f"{k}, {a.sigma_inf!r}, {a.c0!r}")
+            out.append(f"{k}, {float(a.sigma_inf)!r}, {float(a.c0)!r}")
         elif up.startswith("*CONTACTPAIR"):
             out.append(line.rstrip() + ("" if a.finite_sliding else ", SMALL SLIDING"))
             i += 1

@@ -98,14 +98,14 @@ def make_deck(out, cells, seed, lloyd):
     fy = traction_loads(np.array([nodes[n][1] for n in right]))
     with open(os.path.join(out, "beam.inp"), "w") as fh:
         fh.write("** Timoshenko cantilever (bench/peers/case.py)\n*INCLUDE, INPUT=beam_mesh.inp\n"
-                 f"*MATERIAL, NAME=STEEL\n*ELASTIC\n{E!r}, {NU!r}\n"
+                 f"*MATERIAL, NAME=STEEL\n*ELASTIC\n{float(E)!r}, {float(NU)!r}\n"
                  "*SOLID SECTION, ELSET=BEAM, MATERIAL=STEEL\n*STEP\n*STATIC\n*BOUNDARY\n")
         for n in left:
             ux, uy = exact_u(*nodes[n])
-            fh.write(f"{n}, 1, 1, {ux!r}\n{n}, 2, 2, {uy!r}\n")
+            fh.write(f"{n}, 1, 1, {float(ux)!r}\n{n}, 2, 2, {float(uy)!r}\n")
         fh.write("*CLOAD\n")
         for n, f in zip(right, fy):
-            fh.write(f"{n}, 2, {f!r}\n")
+            fh.write(f"{n}, 2, {float(f)!r}\n")
         fh.write("*END STEP\n")
 
 

@@ -113,7 +113,7 @@ def _grid(nx, ny, x0, y0, lx, ly, first_node, first_elem):
 
 
 def _fmt_nodes(nodes):
-    return [f"{n}, {x!r}, {y!r}" for n, x, y in nodes]
+    return [f"{n}, {float(x)!r}, {float(y)!r}" for n, x, y in nodes]
 
 
 def _fmt_elems(elems):
@@ -153,14 +153,14 @@ def blocks_deck(path, e_bottom, e_top, penalty, pressure=PRESSURE, length=1.0, n
             "*ELSET, ELSET=TOPROW", *_ids(top),
             "*NSET, NSET=BOTTOM", *_ids(bottom), "*NSET, NSET=SIDES", *_ids(sorted(set(sides))),
             "*SURFACE, NAME=LOWER_TOP", *master, "*SURFACE, NAME=UPPER_BOTTOM", *slave,
-            "*MATERIAL, NAME=MLOW", "*ELASTIC", f"{e_bottom!r}, {NU!r}",
-            "*MATERIAL, NAME=MUP", "*ELASTIC", f"{e_top!r}, {NU!r}",
+            "*MATERIAL, NAME=MLOW", "*ELASTIC", f"{float(e_bottom)!r}, {float(NU)!r}",
+            "*MATERIAL, NAME=MUP", "*ELASTIC", f"{float(e_top)!r}, {float(NU)!r}",
             "*SOLID SECTION, ELSET=LOWER, MATERIAL=MLOW", "1.0",
             "*SOLID SECTION, ELSET=UPPER, MATERIAL=MUP", "1.0",
-            "*SURFACE INTERACTION, NAME=I", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{penalty!r}",
+            "*SURFACE INTERACTION, NAME=I", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{float(penalty)!r}",
             "*CONTACT PAIR, INTERACTION=I, TYPE=NODE TO SURFACE" + opts, "UPPER_BOTTOM, LOWER_TOP",
             "*BOUNDARY", "BOTTOM, 2", "SIDES, 1",
-            "*STEP", "*STATIC", "*DLOAD", f"TOPROW, P3, {pressure!r}", "*END STEP"]
+            "*STEP", "*STATIC", "*DLOAD", f"TOPROW, P3, {float(pressure)!r}", "*END STEP"]
     Path(path).write_text("\n".join(text) + "\n")
 
 
@@ -181,12 +181,12 @@ def bar_deck(path, e_bottom, e_top, pressure=PRESSURE, length=1.0, nx=4, ny=4):
             "*ELEMENT, TYPE=VPS, ELSET=UPPER", *_fmt_elems(up),
             "*ELSET, ELSET=TOPROW", *_ids(top),
             "*NSET, NSET=BOTTOM", *_ids(bottom), "*NSET, NSET=SIDES", *_ids(sides),
-            "*MATERIAL, NAME=MLOW", "*ELASTIC", f"{e_bottom!r}, {NU!r}",
-            "*MATERIAL, NAME=MUP", "*ELASTIC", f"{e_top!r}, {NU!r}",
+            "*MATERIAL, NAME=MLOW", "*ELASTIC", f"{float(e_bottom)!r}, {float(NU)!r}",
+            "*MATERIAL, NAME=MUP", "*ELASTIC", f"{float(e_top)!r}, {float(NU)!r}",
             "*SOLID SECTION, ELSET=LOWER, MATERIAL=MLOW", "1.0",
             "*SOLID SECTION, ELSET=UPPER, MATERIAL=MUP", "1.0",
             "*BOUNDARY", "BOTTOM, 2", "SIDES, 1",
-            "*STEP", "*STATIC", "*DLOAD", f"TOPROW, P3, {pressure!r}", "*END STEP"]
+            "*STEP", "*STATIC", "*DLOAD", f"TOPROW, P3, {float(pressure)!r}", "*END STEP"]
     Path(path).write_text("\n".join(text) + "\n")
 
 

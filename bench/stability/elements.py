@@ -79,14 +79,14 @@ def poly_deck(title, xy, elems, fixed, cloads, E=1000.0, nu=0.3, form="VEM", pla
     """Deck of a polygon mesh: xy (n,2) nodes 1..n, elems lists of 1-based node ids,
     fixed = [(node, dof, value)], cloads = [(node, dof, value)]."""
     s = [f"** stability study (bench/stability/elements.py): {title}", "*NODE"]
-    s += [f"{i + 1}, {x!r}, {y!r}" for i, (x, y) in enumerate(xy)]
+    s += [f"{i + 1}, {float(x)!r}, {float(y)!r}" for i, (x, y) in enumerate(xy)]
     s.append(f"*ELEMENT, TYPE={plane}, ELSET=B")
     s += [f"{k + 1}, " + ", ".join(str(v) for v in c) for k, c in enumerate(elems)]
-    s += ["*MATERIAL, NAME=M", "*ELASTIC", f"{E!r}, {nu!r}",
+    s += ["*MATERIAL, NAME=M", "*ELASTIC", f"{float(E)!r}, {float(nu)!r}",
           f"*SOLID SECTION, ELSET=B, MATERIAL=M, FORMULATION={form}", "1.0", "*BOUNDARY"]
-    s += [f"{n}, {d}, {d}, {v!r}" for n, d, v in fixed]
+    s += [f"{n}, {d}, {d}, {float(v)!r}" for n, d, v in fixed]
     s += ["*STEP", "*STATIC", "*CLOAD"]
-    s += [f"{n}, {d}, {v!r}" for n, d, v in cloads if v != 0.0]
+    s += [f"{n}, {d}, {float(v)!r}" for n, d, v in cloads if v != 0.0]
     s += ["*END STEP", ""]
     return "\n".join(s)
 
@@ -213,8 +213,8 @@ def timoshenko_strain(work, fam, k, nu):
     lines = ["*BOUNDARY"]
     for i in clamp:
         kk = m.index[i]
-        lines += [f"{i}, 1, 1, {u[kk, 0]!r}", f"{i}, 2, 2, {u[kk, 1]!r}"]
-    lines += ["*STEP", "*STATIC", "*CLOAD"] + [f"{i}, 2, {fi!r}" for i, fi in zip(tip, f) if fi != 0.0]
+        lines += [f"{i}, 1, 1, {float(u[kk, 0])!r}", f"{i}, 2, 2, {float(u[kk, 1])!r}"]
+    lines += ["*STEP", "*STATIC", "*CLOAD"] + [f"{i}, 2, {float(fi)!r}" for i, fi in zip(tip, f) if fi != 0.0]
     deck += "\n".join(lines) + "\n*END STEP\n"
 
     def metrics(res):

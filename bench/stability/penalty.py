@@ -63,7 +63,7 @@ def blocks_row(exe, work, f, nx_low, nx_up):
 
 def hertz_deck(path, K):
     src = (ROOT / "inputs" / "hertz_389_vem.inp").read_text()
-    text, n = re.subn(r"(\*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n)[^\n]*\n", rf"\g<1>{K!r}\n", src)
+    text, n = re.subn(r"(\*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n)[^\n]*\n", rf"\g<1>{float(K)!r}\n", src)
     assert n == 1, "penalty line not found in hertz_389_vem.inp"
     text = text.replace("*INCLUDE, INPUT=meshes/", f"*INCLUDE, INPUT={ROOT / 'inputs' / 'meshes'}/")
     Path(path).write_text(text)

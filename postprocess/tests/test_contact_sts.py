@@ -82,7 +82,7 @@ def deck(tmp_path, include, corners, behavior, pair_type="SURFACE TO SURFACE", c
     text = f"""*INCLUDE, INPUT={include}
 *MATERIAL, NAME=M
 *ELASTIC
-{E!r}, {NU!r}
+{float(E)!r}, {float(NU)!r}
 *SOLID SECTION, ELSET=LOWER, MATERIAL=M
 1.0
 *SOLID SECTION, ELSET=UPPER, MATERIAL=M
@@ -98,7 +98,7 @@ BOTTOM, 2
 *STEP
 *STATIC
 *BOUNDARY
-TOP, 2, 2, {-DELTA!r}
+TOP, 2, 2, {float(-DELTA)!r}
 *END STEP
 """
     path = tmp_path / "run.inp"
@@ -144,7 +144,7 @@ def test_patch_linear_penalties(exe, tmp_path, cells, slave):
     h = np.sqrt(8.0 / sum(cells))
     for khe in [1e0, 1e4, 1e8]:
         k = khe * E / h
-        path = deck(tmp_path, include, corners, f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{k!r}")
+        path = deck(tmp_path, include, corners, f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{float(k)!r}")
         cpress, status, copen, s_elem, nnode = run(exe, path, tmp_path / f"out_{khe:g}")
         check_uniform(cpress, status, s_elem, exact_pressure(k))
 
@@ -157,7 +157,7 @@ def test_patch_hard(exe, tmp_path, cells):
     h = np.sqrt(8.0 / sum(cells))
     for scale in [1e-1, 1.0, 1e3]:
         path = deck(tmp_path, include, corners, "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD",
-                    controls=f"*CONTACT CONTROLS, STIFFNESS SCALE FACTOR={scale!r}\n")
+                    controls=f"*CONTACT CONTROLS, STIFFNESS SCALE FACTOR={float(scale)!r}\n")
         cpress, status, copen, s_elem, nnode = run(exe, path, tmp_path / f"out_{scale:g}")
         check_uniform(cpress, status, s_elem, exact_pressure())
         assert np.abs(copen).max() <= 1e-10 * h
@@ -240,7 +240,7 @@ def test_pressures_add_up_to_the_transmitted_force(exe, tmp_path, pair, behavior
         beh = "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD"
     else:
         khe = float(behavior.split()[1])
-        beh = f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{khe * E * 7.0!r}"
+        beh = f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{float(khe * E * 7.0)!r}"
     path = pressure_blocks(tmp_path, 7, 5, beh, pair, p)
     r = subprocess.run([exe, "-q", "-o", str(tmp_path / "o"), str(path)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
@@ -319,7 +319,7 @@ def hertz_hard(exe, tmp_path, pair_type, scale):
     text = open(os.path.join(root, "hertz_1155_vem.inp")).read()
     text = text.replace("INPUT=meshes/", "INPUT=" + os.path.abspath(os.path.join(root, "meshes")) + "/")
     text = text.replace("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1.0e5\n",
-                        f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n*CONTACT CONTROLS, STIFFNESS SCALE FACTOR={scale!r}\n")
+                        f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n*CONTACT CONTROLS, STIFFNESS SCALE FACTOR={float(scale)!r}\n")
     text = text.replace("TYPE=NODE TO SURFACE", "TYPE=" + pair_type)
     name = f"hertz_{pair_type.split()[0].lower()}_{scale:g}"
     path = tmp_path / f"{name}.inp"

@@ -95,13 +95,13 @@ def test_effectivity_on_graded_mesh(tmp_path, exe):
     b = case.body_force()
     g, d = float(np.linalg.norm(b)), b / np.linalg.norm(b)
     u = case.u(m.xy[:, 0], m.xy[:, 1])
-    lines = [f"*INCLUDE, INPUT={mp}", "*MATERIAL, NAME=M", "*ELASTIC", f"{case.E!r}, {case.nu!r}", "*DENSITY", "1.0",
+    lines = [f"*INCLUDE, INPUT={mp}", "*MATERIAL, NAME=M", "*ELASTIC", f"{float(case.E)!r}, {float(case.nu)!r}", "*DENSITY", "1.0",
              "*SOLID SECTION, ELSET=B, MATERIAL=M", "1.0", "*BOUNDARY"]
     for k, i in enumerate(m.ids):
         x, y = m.xy[k]
         if min(x, y, 1 - x, 1 - y) < 1e-9:
-            lines += [f"{i}, 1, 1, {u[k, 0]!r}", f"{i}, 2, 2, {u[k, 1]!r}"]
-    lines += ["*STEP", "*STATIC", "*DLOAD", f"B, GRAV, {g!r}, {d[0]!r}, {d[1]!r}", "*END STEP"]
+            lines += [f"{i}, 1, 1, {float(u[k, 0])!r}", f"{i}, 2, 2, {float(u[k, 1])!r}"]
+    lines += ["*STEP", "*STATIC", "*DLOAD", f"B, GRAV, {float(g)!r}, {float(d[0])!r}, {float(d[1])!r}", "*END STEP"]
     deck = tmp_path / "graded_deck.inp"
     deck.write_text("\n".join(lines) + "\n")
     r = subprocess.run([exe, "-q", str(deck), "-o", str(tmp_path / "out")], capture_output=True, text=True)

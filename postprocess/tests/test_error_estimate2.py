@@ -215,12 +215,12 @@ def _kolosov_deck(work, shape, n, fam):
                               order=2)
     m = meshes.read_inp(mp)
     u = case.u(m.xy[:, 0], m.xy[:, 1])
-    lines = [f"*INCLUDE, INPUT={mp}", "*MATERIAL, NAME=M", "*ELASTIC", f"{case.E!r}, {case.nu!r}",
+    lines = [f"*INCLUDE, INPUT={mp}", "*MATERIAL, NAME=M", "*ELASTIC", f"{float(case.E)!r}, {float(case.nu)!r}",
              f"*SOLID SECTION, ELSET=B, MATERIAL=M, FORMULATION={mform.upper()}", "1.0", "*BOUNDARY"]
     for k, i in enumerate(m.ids):
         x, y = m.xy[k]
         if min(x, y, 1 - x, 1 - y) < 1e-9:
-            lines += [f"{i}, 1, 1, {u[k, 0]!r}", f"{i}, 2, 2, {u[k, 1]!r}"]
+            lines += [f"{i}, 1, 1, {float(u[k, 0])!r}", f"{i}, 2, 2, {float(u[k, 1])!r}"]
     lines += ["*STEP", "*STATIC", "*END STEP"]
     return case, "\n".join(lines) + "\n"
 

@@ -24,7 +24,7 @@ LABELS_POINT = {"NODE_ID"}
 LABELS_CELL = {"ELEMENT_ID", "MATERIAL", "ELSET", "PART"}
 MESH = {"coordinates", "node_ids", "element_offsets", "element_connectivity", "element_ids",
         "element_material", "element_type", "element_formulation", "element_set", "element_set_names",
-        "material_names", "element_part"}
+        "material_names", "element_part", "xdmf_topology"}
 
 
 def plate(requests):

@@ -21,6 +21,7 @@ module vemcontact_app_cli
       logical :: quiet = .false.
       logical :: write_matrix = .false.
       logical :: compress_vtu = .true.           !< zlib-compressed .vtu arrays (--raw-vtu: not)
+      logical :: write_vtu = .true.              !< .vtu and .pvd files (--no-vtu: JOB.h5 and JOB.xdmf only)
       integer :: ordering = ordering_auto
       integer :: solver = solver_auto            !< vemcontact_solver_factory's solver_*
       character(len=:), allocatable :: petsc_options  !< PETSc's own options, for the PETSc solvers
@@ -36,7 +37,7 @@ contains
           '2D small-strain linear elasticity with the virtual element method (VEM) on'//nl// &
           'polygonal meshes, FEM baselines, for decks in Abaqus/CalculiX keyword syntax.'//nl//nl// &
           'Results are written next to the deck (or to -o DIR), named after the deck:'//nl// &
-          '  JOB.pvd, JOB_NNNN.vtu (one per step), JOB.h5, JOB.log'//nl//nl// &
+          '  JOB.pvd, JOB_NNNN.vtu (one per step), JOB.h5, JOB.xdmf, JOB.log'//nl//nl// &
           'options:'//nl// &
           '  -o, --output DIR      write results into DIR (created if missing)'//nl// &
           '  --ordering METHOD     fill-reducing ordering: auto (default), metis (METIS on'//nl// &
@@ -55,6 +56,8 @@ contains
           '  --write-matrix        also write the first step''s matrix as JOB.mtx (Matrix Market)'//nl// &
           '  --raw-vtu             write the .vtu arrays uncompressed (default: zlib, as VTK''s'//nl// &
           '                        vtkZLibDataCompressor)'//nl// &
+          '  --no-vtu              no .vtu/.pvd files: JOB.xdmf (ParaView, meshio) reads'//nl// &
+          '                        the results in JOB.h5 instead'//nl// &
           '  -q, --quiet           log to JOB.log only'//nl// &
           '  -h, --help            show this help'//nl// &
           '  --version             show the version'
@@ -86,6 +89,8 @@ contains
             cli%write_matrix = .true.
          case ('--raw-vtu')
             cli%compress_vtu = .false.
+         case ('--no-vtu')
+            cli%write_vtu = .false.
          case ('-o', '--output', '--ordering', '--solver', '--petsc-options', '--blas-threads')
             if (i == n) then
                call fatal_error(error, 'error: option '//arg//' needs a value (see vemcontact --help)', err_input)

@@ -123,6 +123,7 @@ program vemcontact_main
    opts%solver_fallback = auto_chosen .and. uses_petsc(cli%solver)
    opts%write_matrix = cli%write_matrix
    opts%compress_vtu = cli%compress_vtu
+   opts%write_vtu = cli%write_vtu
    opts%write_files = rank == 0
    call run_static(model, opts, log, error)
    if (allocated(error)) call fail(error)

@@ -30,6 +30,7 @@ module vemcontact_driver_static
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
    use vemcontact_output_pvd, only: pvd_list_t, pvd_rewrite_due
    use vemcontact_output_hdf5, only: h5_writer_t
+   use vemcontact_output_xdmf, only: write_xdmf
    use vemcontact_output_contact, only: write_contact_csv, write_contact_vtu
    use vemcontact_output_selection, only: field_selection_t, step_selection
    use vemcontact_output_print, only: has_print_requests, write_print_csv
@@ -51,6 +52,7 @@ module vemcontact_driver_static
       logical :: solver_fallback = .false.
       logical :: write_matrix = .false.
       logical :: compress_vtu = .true.        !< zlib-compressed .vtu arrays
+      logical :: write_vtu = .true.           !< .vtu and .pvd files (--no-vtu: not)
       !> .false.: a process of a distributed run other than rank 0, which solves with
       !> the others but writes nothing and skips the post-processing
       logical :: write_files = .true.
@@ -108,7 +110,7 @@ contains
       call run_steps(model, opts, log, rs, error)
       if (.not. allocated(error)) return
       ! the .pvd lists every completed step, and only those
-      if (opts%write_files .and. rs%done > rs%pvd_steps) then
+      if (opts%write_files .and. opts%write_vtu .and. rs%done > rs%pvd_steps) then
          rs%pvd%n = rs%pvd_done
          call rs%pvd%write(rs%base//'.pvd', err2)
          if (allocated(err2)) call append_message(error, '(no .pvd file: '//err2%message//')')
@@ -120,6 +122,8 @@ contains
          call rs%h5%discard()
       else
          call rs%h5%close(err2)
+         if (.not. allocated(err2)) &
+            call write_xdmf(opts%out_dir//'/'//opts%job//'.xdmf', opts%job//'.h5', model, rs%done, err2)
       end if
       if (allocated(err2)) call append_message(error, '(no HDF5 results file: '//err2%message//')')
    end subroutine run_static
@@ -146,11 +150,15 @@ contains
       if (opts%write_files) then
          call rs%h5%close(error, complete=.true.)
          if (allocated(error)) return
+         ! JOB.xdmf: the steps of JOB.h5 for ParaView and meshio, read in place
+         call write_xdmf(rs%base//'.xdmf', opts%job//'.h5', model, size(model%steps), error)
+         if (allocated(error)) return
       end if
       call rs%sys%solver%release()
       call log%say('results')
-      call log%say('  '//rs%base//'.pvd')
+      if (opts%write_vtu) call log%say('  '//rs%base//'.pvd')
       call log%say('  '//rs%base//'.h5')
+      call log%say('  '//rs%base//'.xdmf')
    end subroutine run_steps
 
    !> Contact pairs, the linear system and its solver, with the set-up report.
@@ -384,7 +392,7 @@ contains
       if (allocated(error)) return
       rs%done = istep
       rs%pvd_done = rs%pvd%n
-      if (pvd_rewrite_due(istep) .or. istep == size(model%steps)) then
+      if (opts%write_vtu .and. (pvd_rewrite_due(istep) .or. istep == size(model%steps))) then
          call rs%pvd%write(rs%base//'.pvd', error)
          if (allocated(error)) return
          rs%pvd_steps = istep
@@ -555,10 +563,12 @@ contains
          sel = step_selection(model, istep)
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
          vtu_name = opts%out_dir//'/'//opts%job//trim(buf)
-         call write_vtu(vtu_name, model, reshape(r%u_out, [2, nn]), r%s_elem, r%s_node, error, &
-                        opts%compress_vtu, r%extra, sel, indicator=r%est%indicator)
-         if (allocated(error)) return
-         call rs%pvd%add(vtu_name, time, 0)
+         if (opts%write_vtu) then
+            call write_vtu(vtu_name, model, reshape(r%u_out, [2, nn]), r%s_elem, r%s_node, error, &
+                           opts%compress_vtu, r%extra, sel, indicator=r%est%indicator)
+            if (allocated(error)) return
+            call rs%pvd%add(vtu_name, time, 0)
+         end if
          call rs%h5%write_step(istep, step_name(model, istep), time, reshape(r%u_out, [2, nn]), &
                                r%s_elem, r%s_node, error, sel, indicator=r%est%indicator, &
                                estimate=r%est%estimate, energy=r%est%energy)
@@ -601,7 +611,7 @@ contains
       real(wp), allocatable :: fluid(:)
       associate (tab => rs%res%tab, u_out => rs%res%u_out)
          tab = rs%contact%table(model, u_out)
-         if (sel%contact()) then
+         if (sel%contact() .and. opts%write_vtu) then
             write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
             name = opts%out_dir//'/'//opts%job//trim(buf)
             call write_contact_vtu(name, tab, reshape(u_out, [2, int(model%nnode)]), error, opts%compress_vtu, sel)

@@ -29,6 +29,7 @@ module vemcontact_output_hdf5
    use vemcontact_error, only: error_t, fatal_error, err_io, err_internal
    use vemcontact_model, only: model_t, string_t
    use vemcontact_output_selection, only: field_selection_t
+   use vemcontact_output_xdmf, only: xdmf_topology, xdmf_layout
    use vemcontact_contact_iteration, only: iteration_record_t
    use vemcontact_safe_file, only: create_temporary, publish_file, remove_file
    implicit none
@@ -120,7 +121,7 @@ contains
    end subroutine h5_open
 
    !> Write /mesh: coordinates, ids, 0-based CSR connectivity, element type,
-   !> formulation and material.
+   !> formulation and material, and the cells as XDMF's topology (xdmf_topology).
    subroutine h5_write_mesh(self, model, error)
       class(h5_writer_t), intent(inout) :: self
       type(model_t), intent(in) :: model
@@ -129,6 +130,8 @@ contains
       integer :: hdferr
       integer(ip) :: nconn
       integer(hsize_t) :: nn, ne
+      integer :: xkind, nper
+      integer(i8) :: xlength
 
       if (.not. check_open(self, 'write_mesh', error)) return
       if (.not. mesh_arrays_fit(model)) then
@@ -158,6 +161,15 @@ contains
       if (.not. allocated(error)) &
          call put_int(self, grp, 'element_formulation', [ne], &
                       int(model%elem_form(1:model%nelem), ip), error)
+      ! the cells as JOB.xdmf's topology (vemcontact_output_xdmf)
+      if (.not. allocated(error) .and. model%nelem > 0) then
+         call xdmf_layout(model, xkind, nper, xlength)
+         if (nper > 0) then
+            call put_int(self, grp, 'xdmf_topology', [int(nper, hsize_t), ne], xdmf_topology(model), error)
+         else
+            call put_int(self, grp, 'xdmf_topology', [int(xlength, hsize_t)], xdmf_topology(model), error)
+         end if
+      end if
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group /mesh', error)) return

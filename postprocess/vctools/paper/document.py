@@ -41,7 +41,7 @@ def write_document(plan, work: str, out: str, figs: str, t_runs: float) -> str:
     md.append("*The virtual element method for the dam foundation with joint*, Front. Earth Sci. 10:875561. "
               "The paper's figures are lost; its numbers are in its text (Table 1, the Hertz peaks, the example "
               "descriptions). This document is written by `python -m vctools.paper` "
-              "(`bash scripts/reproduce-paper.sh`): it runs every deck below with vemcontact, draws the figures "
+              "(`bash scripts/reproduce-paper.sh --out docs`): it runs every deck below with vemcontact, draws the figures "
               f"into `{figrel}/` and puts the paper's numbers beside ours.")
     if quick:
         md.append(" **This is a `--quick` run: a subset of the meshes, for tests.**")

@@ -1,7 +1,8 @@
 """vc-plot: contour pictures of vemcontact results.
 
   python -m vctools.plot RESULT [--field F ...] [--step K] [--deformed auto|SCALE]
-                         [--units LENGTH[,STRESS]] [--line X1,Y1,X2,Y2 ...]
+                         [--units LENGTH[,STRESS]] [--model-units LENGTH,STRESS]
+                         [--line X1,Y1,X2,Y2 ...]
                          [--clip P] [--exclude X,Y[,R] ...] [-o DIR] [--format png|pdf]
 
 RESULT is a .vtu file or a .pvd collection (default: its last step).  Fields:
@@ -9,8 +10,12 @@ MISES, S1, S3, U (magnitude), U:x, U:y, S:xx, S:yy, S:zz, S:xy, E:xx, E:yy, E:zz
 E:xy (tensor shear, gamma/2), RF:x, RF:y; prefix cell: for
 element values (cell:S:yy).  One picture per field, named JOB_FIELD.png, titled
 with the field and the step (its number and, from JOB.h5, its name); the axes
-carry the length unit, the colour bar the field's unit.  --line overlays (given
-in undeformed coordinates) follow the deformed shape like the field.  The colour
+carry the length unit, the colour bar the field's unit.  --units converts: the
+model's values, in --model-units (the deck's units, default m,Pa), are shown in
+--units (--units mm,MPa draws the SI dam in millimetres and megapascals; reaction
+forces follow as stress times length squared, strains are not converted).  --line
+overlays, --exclude circles (given in the deck's undeformed coordinates) follow
+the deformed shape like the field.  The colour
 range can leave out a singular point (--exclude: values within R of (X, Y); R
 defaults to 2 % of the model's size) and clip at a percentile (--clip 99: from
 the 1st to the 99th percentile); the bar then says so and shows arrows for the
@@ -32,7 +37,7 @@ import sys
 import numpy as np
 
 from .results import ResultError, check_complete, contact_file, read_contact_points, read_vtu, step_files, step_label
-from .contour import plot
+from .contour import field_unit, plot, unit_factors
 
 
 def main(argv=None) -> int:
@@ -44,7 +49,10 @@ def main(argv=None) -> int:
     p.add_argument("--step", type=int, default=0, help="step of a .pvd, 1-based (default: last)")
     p.add_argument("--deformed", default=None, help="draw on the deformed shape: auto or a scale factor")
     p.add_argument("--units", default="", metavar="LENGTH[,STRESS]",
-                   help="units on the colour bar: displacement fields take the first, stresses the second (e.g. m,Pa)")
+                   help="units to show, converted from --model-units: lengths and displacements in the first, "
+                        "stresses in the second (e.g. mm,MPa)")
+    p.add_argument("--model-units", default="m,Pa", metavar="LENGTH,STRESS",
+                   help="the units of the deck (default m,Pa; e.g. mm,MPa for a deck in mm, N, MPa)")
     p.add_argument("--line", action="append", default=[], metavar="X1,Y1,X2,Y2[,...]",
                    help="polyline drawn over the picture, e.g. a joint (repeatable; undeformed coordinates, "
                         "drawn on the deformed shape with the field)")
@@ -115,12 +123,11 @@ def main(argv=None) -> int:
             if not fields:
                 raise ResultError(f"{vtu}: no result field to draw: the deck's output requests select none "
                                   f"(*NODE FILE U, *EL FILE S)")
+        lf, sf, lunit, sunit = unit_factors(a.units, a.model_units) if a.units else (1.0, 1.0, "", "")
         for f in fields:
             out = os.path.join(outdir, f"{job}_{f.replace(':', '_')}.{a.format}")
-            units = a.units.split(",")
-            unit = units[0] if f.removeprefix("cell:").startswith("U") or len(units) == 1 else units[1]
-            plot(res, f, out, deformed=deformed, units=unit, lines=lines, contact=contact,
-                 length_unit=units[0], step=step, clip=a.clip, exclude=exclude)
+            plot(res, f, out, deformed=deformed, units=field_unit(f, lunit, sunit), lines=lines, contact=contact,
+                 length_unit=lunit, step=step, clip=a.clip, exclude=exclude, length_factor=lf, stress_factor=sf)
             print(out)
     except ResultError as exc:
         print(f"vc-plot: error: {exc}", file=sys.stderr)

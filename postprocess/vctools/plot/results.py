@@ -130,10 +130,17 @@ def read_vtu(path: str) -> PolyResult:
     cell_data = {}
     blocks = []
     for block in mesh.cells:
-        if not block.type.startswith("polygon") and block.type not in ("triangle", "quad"):
+        if not block.type.startswith("polygon") and block.type not in ("triangle", "quad", "triangle6", "quad8"):
             raise ResultError(f"{path}: cells of type {block.type} are not polygons: not a vemcontact result")
         blocks.append(block)
-        polygons.extend(np.asarray(c, dtype=np.int64) for c in block.data)
+        data = np.asarray(block.data, dtype=np.int64)
+        if block.type in ("triangle6", "quad8"):
+            # corners, then side nodes -> the polygon round the boundary through the side nodes
+            n = data.shape[1] // 2
+            ring = np.empty_like(data)
+            ring[:, 0::2], ring[:, 1::2] = data[:, :n], data[:, n:]
+            data = ring
+        polygons.extend(data)
     for name, arrays in mesh.cell_data.items():
         cell_data[name] = np.concatenate([np.asarray(a) for a in arrays])
     # meshio splits polygons into blocks by vertex count; cells keep the file's
