@@ -3,14 +3,17 @@
 !> Each slave node is projected onto the master surface and each master node onto
 !> the slave face, in the reference configuration; where a projection falls inside
 !> a side (not on one of its end nodes), a new node is inserted there, as one more
-!> vertex of that side's polygon, on the curve through the face's vertices (on the
-!> side itself where the face is straight).  A virtual element takes any number of
+!> vertex of that side's polygon, on the side itself: a first-order side is the
+!> straight chord between its end nodes, and that chord is the body's boundary, so
+!> the inserted node changes neither body's geometry (no smoothing at kinks, no
+!> curve guessed from neighbouring sides).  A virtual element takes any number of
 !> vertices, so the meshes stay valid and the interface becomes node to node: every
 !> interface node has a partner on the other side at the same tangential position,
-!> and the contact patch test is passed exactly for any mesh on either side
-!> (Wriggers, Rust, Reddy 2016; docs/contact-formulation.md).  The pairs found here
-!> are stored in the model (contact_pair_t%partner) and kept for the whole analysis:
-!> small sliding, consistent with small strain.
+!> and where the two faces are the same polyline (straight faces, kinks at vertices
+!> of both meshes) the contact patch test is passed exactly for any mesh on either
+!> side (Wriggers, Rust, Reddy 2016; docs/contact-formulation.md).  The pairs found
+!> here are stored in the model (contact_pair_t%partner) and kept for the whole
+!> analysis: small sliding, consistent with small strain.
 !>
 !> Only virtual elements can take the extra nodes: a side of a FEM element (CPE4,
 !> CPE3, FORMULATION=FEM) on a surface of such a pair is an error naming it.
@@ -19,14 +22,14 @@ module vemcontact_contact_insertion
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
    use vemcontact_model, only: model_t, surface_t, dload_t, step_t, source_loc_t, location_string, &
                                surface_element, surface_node, form_fem, etype_polygon, dload_pressure, &
-                               dload_hydrostatic, pair_surface_to_surface
+                               dload_hydrostatic, pair_surface_to_surface, element_order
    use vemcontact_contact_surfaces, only: master_segments, slave_edges
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments
    use vemcontact_contact_geometry, only: length2
    implicit none
    private
 
-   public :: insert_interface_nodes, project_onto_sides, side_curvature, on_face
+   public :: insert_interface_nodes, project_onto_sides, on_face
 
    !> A projection within snap_rel of a side's length from one of its end nodes is
    !> that node: nodes that coincide in the mesh (matching faces of a joint) do so up
@@ -43,9 +46,6 @@ module vemcontact_contact_insertion
       integer :: side = 0
       real(wp) :: xi = 0.0_wp
       integer(ip) :: ends(2) = 0   !< the side's start and end node
-      !> curvature of the face along the side (side_curvature): the node is placed
-      !> on the curve through the face's vertices, not on the chord
-      real(wp) :: kappa = 0.0_wp
       integer(ip) :: node = 0      !< the new node
    end type insertion_t
 
@@ -70,6 +70,11 @@ contains
       allocate (added(size(model%pairs)), source=0_ip)
       do p = 1, size(model%pairs)
          if (model%pairs(p)%formulation /= pair_surface_to_surface) cycle
+         ! these messages name the surface's own file:line
+         call check_first_order(model, model%pairs(p)%slave, error)
+         if (allocated(error)) return
+         call check_first_order(model, model%pairs(p)%master, error)
+         if (allocated(error)) return
          call insert_pair(model, p, added(p), err)
          if (allocated(err)) then
             call append_message(error, location_string(model, model%pairs(p)%loc)//': '//err%message, err%code)
@@ -114,8 +119,8 @@ contains
       ! partners: an end node of the side, or a node inserted into it
       allocate (ins(count(s_on > 0) + count(m_on > 0)))
       m = 0
-      call partners(mseg, melem, mside, side_curvature(model%x, mseg), s_on, s_xi, ins, m, s_partner)
-      call partners(sseg, selem, sside, side_curvature(model%x, sseg), m_on, m_xi, ins, m, m_partner)
+      call partners(mseg, melem, mside, s_on, s_xi, ins, m, s_partner)
+      call partners(sseg, selem, sside, m_on, m_xi, ins, m, m_partner)
       ins = ins(:m)
       call check_constrained_sides(model, ins, error)
       if (allocated(error)) return
@@ -181,10 +186,10 @@ contains
    !> The partner of each projected node: the end node of the side when the
    !> projection is within snap_rel of it, else -(index into ins) of the node to
    !> insert (appended to ins(m+1:)), 0 without a side.
-   pure subroutine partners(seg, elem, side, kappa, on, xi, ins, m, partner)
+   pure subroutine partners(seg, elem, side, on, xi, ins, m, partner)
       integer(ip), intent(in) :: seg(:, :), elem(:), on(:)
       integer, intent(in) :: side(:)
-      real(wp), intent(in) :: kappa(:), xi(:)
+      real(wp), intent(in) :: xi(:)
       type(insertion_t), intent(inout) :: ins(:)
       integer, intent(inout) :: m
       integer(ip), allocatable, intent(out) :: partner(:)
@@ -198,70 +203,63 @@ contains
             partner(i) = seg(2, on(i))
          else
             m = m + 1
-            ins(m) = insertion_t(elem(on(i)), side(on(i)), xi(i), seg(:, on(i)), kappa(on(i)), 0_ip)
+            ins(m) = insertion_t(elem(on(i)), side(on(i)), xi(i), seg(:, on(i)), 0_ip)
             partner(i) = -m
          end if
       end do
    end subroutine partners
 
-   !> Curvature of a face along each of its sides seg(:, k) = (a, b) (element
-   !> orientation, body on the left): the mean of the curvatures at a and b, each the
-   !> turning angle between the sides that meet there over their mean length (1/R for
-   !> vertices on a circle of radius R; exactly 0 where the sides are collinear);
-   !> positive where the face turns left, a convex boundary.  An end of an open face
-   !> takes the other end's value.
-   pure function side_curvature(x, seg) result(kappa)
-      real(wp), intent(in) :: x(:, :)
-      integer(ip), intent(in) :: seg(:, :)
-      real(wp), allocatable :: kappa(:)
-      integer(ip), allocatable :: into(:), from(:)
-      real(wp) :: ka, kb
-      logical :: ha, hb
-      integer :: k
-      allocate (into(size(x, 2)), from(size(x, 2)), source=0_ip)
-      do k = 1, size(seg, 2)
-         from(seg(1, k)) = k
-         into(seg(2, k)) = k
-      end do
-      allocate (kappa(size(seg, 2)))
-      do k = 1, size(seg, 2)
-         ha = into(seg(1, k)) > 0
-         hb = from(seg(2, k)) > 0
-         ka = 0.0_wp
-         kb = 0.0_wp
-         if (ha) ka = turning(into(seg(1, k)), k)
-         if (hb) kb = turning(k, from(seg(2, k)))
-         if (ha .and. hb) then
-            kappa(k) = 0.5_wp*(ka + kb)
-         else
-            kappa(k) = ka + kb
-         end if
-      end do
-   contains
-      !> turning angle from side k1 to side k2 (k1 ends where k2 starts) over their mean length
-      pure real(wp) function turning(k1, k2) result(c)
-         integer(ip), intent(in) :: k1, k2
-         real(wp) :: t1(2), t2(2), l1, l2
-         t1 = x(:, seg(2, k1)) - x(:, seg(1, k1))
-         t2 = x(:, seg(2, k2)) - x(:, seg(1, k2))
-         l1 = length2(t1)
-         l2 = length2(t2)
-         c = atan2(t1(1)*t2(2) - t1(2)*t2(1), dot_product(t1, t2))/(0.5_wp*(l1 + l2))
-      end function turning
-   end function side_curvature
-
-   !> The point at parameter xi of side a -> b on the curve of curvature kappa through
-   !> a and b: the chord point moved along the outward normal (t_y, -t_x)/l by the
-   !> circle's offset from its chord, kappa l^2 xi (1 - xi) / 2 to second order.
-   pure function on_face(xa, xb, xi, kappa) result(xp)
-      real(wp), intent(in) :: xa(2), xb(2), xi, kappa
-      real(wp) :: xp(2), t(2), l
-      t = xb - xa
-      l = length2(t)
-      xp = (1.0_wp - xi)*xa + xi*xb
-      ! kappa = 0 exactly on a straight face: the offset is exactly zero there
-      xp = xp + 0.5_wp*kappa*l*xi*(1.0_wp - xi)*[t(2), -t(1)]
+   !> The point at parameter xi of the straight side xa -> xb: exactly xa at 0 and xb
+   !> at 1, and on the line through them (to the rounding of one multiply-add).
+   pure function on_face(xa, xb, xi) result(xp)
+      real(wp), intent(in) :: xa(2), xb(2), xi
+      real(wp) :: xp(2)
+      xp = xa + xi*(xb - xa)
    end function on_face
+
+   !> Refuse a surface on second-order elements (VPE2/VPS2, CPE8, CPE6): a node
+   !> inserted into a side with a middle node would need new side nodes for the two
+   !> new sides, which the insertion does not make.  The message names the surface's
+   !> file:line and one element (or, for a node surface, one node of such an element).
+   subroutine check_first_order(model, isurf, error)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: isurf
+      type(error_t), allocatable, intent(out) :: error
+      logical, allocatable :: second(:)
+      character(len=:), allocatable :: what
+      integer(ip) :: e
+      integer :: k
+      if (.not. allocated(model%surfaces)) return
+      if (isurf < 1 .or. isurf > size(model%surfaces)) return
+      what = ''
+      associate (s => model%surfaces(isurf))
+         if (s%kind == surface_element .and. allocated(s%elem)) then
+            do k = 1, size(s%elem)
+               if (element_order(model%elem_type(s%elem(k))) == 2) then
+                  what = 'element '//itoa(model%elem_id(s%elem(k)))
+                  exit
+               end if
+            end do
+         else if (allocated(s%nodes)) then
+            allocate (second(model%nnode), source=.false.)
+            do e = 1, model%nelem
+               if (element_order(model%elem_type(e)) == 2) &
+                  second(model%elem_conn(model%elem_ptr(e):model%elem_ptr(e + 1) - 1)) = .true.
+            end do
+            do k = 1, size(s%nodes)
+               if (second(s%nodes(k))) then
+                  what = 'node '//itoa(model%node_id(s%nodes(k)))
+                  exit
+               end if
+            end do
+         end if
+         if (len(what) == 0) return
+         call fatal_error(error, location_string(model, s%loc)//': error: contact surface '//s%name// &
+                          ' is on a second-order element ('//what//'): TYPE=SURFACE TO SURFACE contact on '// &
+                          'sides with a middle node is not supported'//new_line('a')//'  = help: use TYPE=NODE '// &
+                          'TO SURFACE, or first-order elements (VPE/VPS) along the contact surfaces', err_input)
+      end associate
+   end subroutine check_first_order
 
    !> Refuse sides of FEM elements: they cannot take extra nodes.  One message that
    !> names the first few elements and where the first is defined.
@@ -366,7 +364,7 @@ contains
       call grow_nodes(model, nadded)
       do k = 1, size(ins)
          associate (i => ins(k)%node)
-            model%x(:, i) = on_face(model%x(:, ins(k)%ends(1)), model%x(:, ins(k)%ends(2)), ins(k)%xi, ins(k)%kappa)
+            model%x(:, i) = on_face(model%x(:, ins(k)%ends(1)), model%x(:, ins(k)%ends(2)), ins(k)%xi)
             model%node_loc(i) = model%elem_loc(ins(k)%elem)
             model%node_id(i) = idmax + (i - n0)
          end associate
