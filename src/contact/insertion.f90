@@ -1,22 +1,25 @@
 !> Interface node insertion of TYPE=SURFACE TO SURFACE contact pairs.
 !>
-!> Each slave node is projected onto the master surface and each master node onto
-!> the slave face, in the reference configuration; where a projection falls inside
-!> a side (not on one of its end nodes), a new node is inserted there, as one more
-!> vertex of that side's polygon, on the side itself: a first-order side is the
-!> straight chord between its end nodes, and that chord is the body's boundary, so
-!> the inserted node changes neither body's geometry (no smoothing at kinks, no
-!> curve guessed from neighbouring sides).  A virtual element takes any number of
-!> vertices, so the meshes stay valid and the interface becomes node to node: every
-!> interface node has a partner on the other side at the same tangential position,
-!> and where the two faces are the same polyline (straight faces, kinks at vertices
-!> of both meshes) the contact patch test is passed exactly for any mesh on either
-!> side (Wriggers, Rust, Reddy 2016; docs/contact-formulation.md).  The pairs found
-!> here are stored in the model (contact_pair_t%partner) and kept for the whole
-!> analysis: small sliding, consistent with small strain.
+!> Each slave corner is projected onto the master surface (closest point) and each
+!> master corner onto the slave face (along the master's normal at the node), in the
+!> reference configuration; where a projection falls inside a side (not on one of its
+!> end nodes), a new node is inserted there, as one more vertex of that side's
+!> polygon, on the side itself: the straight chord of a first-order side, the
+!> quadratic curve of a second-order one (split into pieces, each with its own side
+!> node on the same curve).  The element sides are the bodies' boundaries, so the
+!> insertion changes neither body's geometry (no smoothing at kinks, no curve guessed
+!> from neighbouring sides).  A virtual element takes any number of vertices, so the
+!> meshes stay valid and the interface becomes node to node: every interface node has a
+!> partner on the other side at the same tangential position, and where the two faces
+!> are the same curve (straight faces, kinks at vertices of both meshes) the contact
+!> patch test is passed exactly for any mesh on either side (Wriggers, Rust, Reddy
+!> 2016; docs/contact-formulation.md).  The pairs found here are stored in the model
+!> (contact_pair_t%partner) and kept for the whole analysis: small sliding, consistent
+!> with small strain.
 !>
 !> Only virtual elements can take the extra nodes: a side of a FEM element (CPE4,
-!> CPE3, FORMULATION=FEM) on a surface of such a pair is an error naming it.
+!> CPE3, CPE8, CPE6 with FORMULATION=FEM) on a surface of such a pair is an error
+!> naming it, and so is a pair of a first-order and a second-order face.
 module vemcontact_contact_insertion
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
