@@ -140,7 +140,9 @@ def test_paper_quick(vemcontact, tmp_path):
     for kind in ("vem_nts", "vem_sts", "fem_nts"):
         h = reproduce.hertz_hard_stats(runs.read_contact(str(work / f"hard_hertz_389_{kind}")))
         assert h["overclosure"] < 1e-12, kind                      # HARD: no overclosure
-        assert h["peak"] == pytest.approx(83.60, rel=0.04), kind
+        # STS sees the 389-element disc as its polygon (the block's nodes inserted on its
+        # chords): +5.3 %, O(h) (docs/contact-formulation.md, "Curved faces")
+        assert h["peak"] == pytest.approx(83.60, rel=0.06 if kind == "vem_sts" else 0.04), kind
         assert h["last_closed"] < h["first_open"]
     for m in ("quad", "voronoi_50"):
         # the contact patch test (top and bottom on rollers): STS exact to round-off, NTS not

@@ -234,10 +234,10 @@ E, GRAV, 0.01, 0.0, -1.0
     (deck("VPE2").replace("11, 24, 0", "11, 30, 0"), "too far along side 2-3 from its middle"),
     (deck("VPE2").replace("11, 24, 0", "11, 24, -20"), "too far off side 2-3"),
     (deck("VPE2").replace("*CLOAD", "*DLOAD\n1, P5, 1.0\n*CLOAD"), "has 4 sides, so there is no side P5"),
-    (deck("VPE2").replace("*BOUNDARY", "*SURFACE, NAME=A\n1, S1\n*SURFACE, NAME=B\n2, S1\n"
+    (deck("CPE8").replace("*BOUNDARY", "*SURFACE, NAME=A\n1, S1\n*SURFACE, NAME=B\n2, S1\n"
                           "*SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
                           "1.0e3\n*CONTACT PAIR, INTERACTION=I, TYPE=SURFACE TO SURFACE\nA, B\n*BOUNDARY"),
-     "TYPE=SURFACE TO SURFACE contact on sides with a middle node is not supported"),
+     "FEM elements have sides on the surfaces of this TYPE=SURFACE TO SURFACE pair"),
 ])
 def test_second_order_errors(exe, tmp_path, text, msg):
     r = run(exe, tmp_path, text, "bad")

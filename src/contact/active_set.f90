@@ -261,17 +261,20 @@ contains
 
    !> The fixed node-to-node pairing of a SURFACE TO SURFACE pair: each slave node's
    !> partner from the interface node insertion, as the end xi = 0 or 1 of a master
-   !> segment, with the normal of the master surface at the partner (the normalized
-   !> sum of the unit normals of the segments that meet there: on a straight master,
-   !> that side's normal; at a vertex of a curved master, inserted ones included, a
-   !> direction between its two sides).
+   !> segment, with the mean normal of the master surface at the partner: the unit
+   !> normals of the segments that meet there weighted by their half lengths, over
+   !> the sum of those half lengths (not normalized).  The gap n . d is then the mean
+   !> of the face gaps n_f . d over the node's tributary length, and the force N n is
+   !> the lumped force of a pressure N / L on those faces: on a straight face the
+   !> side's unit normal; at a kink shorter than 1 by cos of half the turn, which keeps
+   !> a uniform pressure exact there (docs/contact-formulation.md).
    subroutine node_partners(model, pair, node, seg, pd)
       type(model_t), intent(in) :: model
       type(contact_pair_t), intent(in) :: pair
       integer(ip), intent(in) :: node(:), seg(:, :)
       type(pair_data_t), intent(inout) :: pd
       integer(ip), allocatable :: partner(:), seg_at(:)
-      real(wp), allocatable :: vn(:, :)
+      real(wp), allocatable :: vn(:, :), lsum(:)
       real(wp) :: t(2), l
       integer :: k, i, j
       integer(ip) :: m
@@ -283,13 +286,14 @@ contains
             partner(pair%partner(1, k)) = pair%partner(2, k)
          end do
       end if
-      allocate (vn(2, model%nnode), source=0.0_wp)
+      allocate (vn(2, model%nnode), lsum(model%nnode), source=0.0_wp)
       allocate (seg_at(model%nnode), source=0_ip)
       do k = 1, size(seg, 2)
          t = model%x(:, seg(2, k)) - model%x(:, seg(1, k))
          l = length2(t)
          do j = 1, 2
-            vn(:, seg(j, k)) = vn(:, seg(j, k)) + [t(2), -t(1)]/l
+            vn(:, seg(j, k)) = vn(:, seg(j, k)) + [t(2), -t(1)]
+            lsum(seg(j, k)) = lsum(seg(j, k)) + l
             if (seg_at(seg(j, k)) == 0) seg_at(seg(j, k)) = k
          end do
       end do
@@ -302,7 +306,7 @@ contains
          if (seg_at(m) == 0) cycle
          pd%nn_seg(i) = seg_at(m)
          pd%nn_xi(i) = merge(0.0_wp, 1.0_wp, seg(1, seg_at(m)) == m)
-         pd%nn_normal(:, i) = vn(:, m)/length2(vn(:, m))
+         pd%nn_normal(:, i) = vn(:, m)/lsum(m)
       end do
    end subroutine node_partners
 
@@ -662,7 +666,7 @@ contains
    end function normal_force
 
    !> The normal force of each active entry that the solution balances, from
-   !> r = K u - f_ext (the force the contact exerts on each node): n . r at the slave
+   !> r = K u - f_ext (the force the contact exerts on each node): n . r / |n|^2 at the slave
    !> node, where that node takes part in no other active entry and no fixed dof of it
    !> has a normal component (so that n . r is this entry's force alone); the spring's own force
    !> N = max(0, lambda - k g) elsewhere.  The spring force is K times an overclosure
@@ -694,7 +698,9 @@ contains
          ! a fixed dof's residual holds its reaction: usable only across the normal
          if (uses(s) /= 1 .or. (fixed(2*s - 1) .and. abs(self%normal(1, i)) > 0.0_wp) .or. &
              (fixed(2*s) .and. abs(self%normal(2, i)) > 0.0_wp)) cycle
-         self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))
+         ! the force on the node is N n, with |n| < 1 at a kink of a SURFACE TO SURFACE master
+         self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))/ &
+                            dot_product(self%normal(:, i), self%normal(:, i))
       end do
    end subroutine set_balanced
 

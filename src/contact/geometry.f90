@@ -189,9 +189,14 @@ contains
    !> tau.(u_s - u_xi) = tau.A(xi) u with u = [u_s; u_a; u_b] (dof order of
    !> relative_map) and tau = (-n_y, n_x) = t/l the unit tangent a -> b, recovered
    !> from the outward normal n = (t_y, -t_x)/l.  Positive when the slave node moves
-   !> along a -> b relative to the master; zero for rigid translations.
+   !> along a -> b relative to the master; zero for rigid translations.  The normal
+   !> may be shorter than 1 (the mean normal at a kink of a SURFACE TO SURFACE master):
+   !> tau is then scaled back to unit length.
    pure real(wp) function contact_slip(xi, normal, u) result(s)
       real(wp), intent(in) :: xi, normal(2), u(6)
+      real(wp) :: nn
       s = dot_product([-normal(2), normal(1)], matmul(relative_map(xi), u))
+      nn = norm2(normal)
+      if (nn > 0.0_wp) s = s/nn
    end function contact_slip
 end module vemcontact_contact_geometry

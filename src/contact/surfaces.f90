@@ -251,6 +251,7 @@ contains
    end subroutine slave_nodes
 
    !> Sides of the slave face of `pair` in element orientation: edge(:, k) = (a, b),
+   !> the side's corners (a second-order side's middle node is element_side's third),
    !> side edge_side(k) of element edge_elem(k).  Element surface: its facets.  Node
    !> surface: the mesh boundary edges (used by one element) whose ends are both in the
    !> set, or one in the set and the other a node of the master surface (the edge to a
@@ -264,8 +265,8 @@ contains
       integer(ip), allocatable :: node_ptr(:), node_elem(:), be(:, :), bel(:)
       integer, allocatable :: bside(:)
       logical, allocatable :: in_slave(:), in_master(:)
-      integer(ip) :: e, p, q, p0, nn, m
-      integer :: k, j
+      integer(ip) :: e, p, q, m, abc(3)
+      integer :: k, j, ns
       call check_surface_index(model, pair%slave, 'slave', error)
       if (allocated(error)) return
       call check_surface_index(model, pair%master, 'master', error)
@@ -276,7 +277,8 @@ contains
             if (allocated(error)) return
             allocate (edge(2, size(surf%elem)), edge_elem(size(surf%elem)), edge_side(size(surf%elem)))
             do k = 1, size(surf%elem)
-               edge(:, k) = side_nodes(model, surf%elem(k), surf%side(k))
+               call element_side(model, surf%elem(k), surf%side(k), abc, ns)
+               edge(:, k) = abc(1:2)
             end do
             edge_elem = surf%elem
             edge_side = surf%side
@@ -288,19 +290,20 @@ contains
             call check_facets(model, ms, surface_where(model, ms), error)
             if (allocated(error)) return
             do k = 1, size(ms%elem)
-               in_master(side_nodes(model, ms%elem(k), ms%side(k))) = .true.
+               call element_side(model, ms%elem(k), ms%side(k), abc, ns)
+               in_master(abc(1:2)) = .true.
             end do
          end if
          call node_elements(model, node_ptr, node_elem)
          allocate (be(2, 16), bel(16), bside(16))
          m = 0
-         ! every side of an element that touches the set, once: from its start node
+         ! every side of an element that touches the set, once: from its start corner
          do e = 1, model%nelem
-            p0 = model%elem_ptr(e)
-            nn = model%elem_ptr(e + 1) - p0
-            do j = 0, int(nn) - 1
-               p = model%elem_conn(p0 + j)
-               q = model%elem_conn(p0 + mod(j + 1, int(nn)))
+            call element_side(model, e, 1, abc, ns)
+            do j = 0, ns - 1
+               call element_side(model, e, j + 1, abc, ns)
+               p = abc(1)
+               q = abc(2)
                if (.not. ((in_slave(p) .and. (in_slave(q) .or. in_master(q))) .or. &
                           (in_slave(q) .and. in_master(p)))) cycle
                if (other_element(model, node_ptr, node_elem, e, p, q) /= 0) cycle
@@ -362,19 +365,6 @@ contains
          end if
       end do
    end subroutine check_facets
-
-   !> (node k, node k+1) of element e, side k.
-   pure function side_nodes(model, e, k) result(ab)
-      type(model_t), intent(in) :: model
-      integer(ip), intent(in) :: e
-      integer, intent(in) :: k
-      integer(ip) :: ab(2)
-      integer(ip) :: p0, n
-      p0 = model%elem_ptr(e)
-      n = model%elem_ptr(e + 1) - p0
-      ab(1) = model%elem_conn(p0 + k - 1)
-      ab(2) = model%elem_conn(p0 + mod(k, n))
-   end function side_nodes
 
    !> If side a -> b of element e is a mesh boundary edge (no other element
    !> has it), half its length goes to each end, weighted by e's thickness in ltsum.

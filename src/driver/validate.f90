@@ -121,64 +121,7 @@ contains
          write (id, '(i0)') nerr - max_messages
          call append_message(error, '... and '//trim(id)//' more element errors', err_input)
       end if
-      if (nerr == 0) call check_contact_order(model, error)
    end subroutine validate_elements
-
-   !> SURFACE TO SURFACE contact on second-order sides is not implemented (its
-   !> node insertion would have to add side nodes to the k = 2 polygons): a
-   !> surface of such a pair on a second-order element (or, for node surfaces, a
-   !> node of one) is refused with the surface's file:line.  NODE TO SURFACE
-   !> pairs take second-order sides (vemcontact_contact_surfaces).
-   subroutine check_contact_order(model, error)
-      type(model_t), intent(in) :: model
-      type(error_t), allocatable, intent(inout) :: error
-      logical, allocatable :: second_node(:)
-      integer :: k, r, isurf, e
-      character(len=24) :: id
-      if (.not. allocated(model%pairs) .or. .not. allocated(model%surfaces)) return
-      if (size(model%pairs) == 0) return
-      if (all([(element_order(model%elem_type(e)) == 1, e=1, model%nelem)])) return
-      allocate (second_node(model%nnode), source=.false.)
-      do e = 1, model%nelem
-         if (element_order(model%elem_type(e)) == 2) &
-            second_node(model%elem_conn(model%elem_ptr(e):model%elem_ptr(e + 1) - 1)) = .true.
-      end do
-      do k = 1, size(model%pairs)
-         if (model%pairs(k)%formulation /= pair_surface_to_surface) cycle
-         do r = 1, 2
-            isurf = model%pairs(k)%slave
-            if (r == 2) isurf = model%pairs(k)%master
-            if (isurf < 1 .or. isurf > size(model%surfaces)) cycle
-            associate (s => model%surfaces(isurf))
-               id = ''
-               if (s%kind == surface_element .and. allocated(s%elem)) then
-                  do e = 1, size(s%elem)
-                     if (element_order(model%elem_type(s%elem(e))) == 2) then
-                        write (id, '(i0)') model%elem_id(s%elem(e))
-                        exit
-                     end if
-                  end do
-               else if (allocated(s%nodes)) then
-                  do e = 1, size(s%nodes)
-                     if (second_node(s%nodes(e))) then
-                        write (id, '(a,i0)') 'node ', model%node_id(s%nodes(e))
-                        exit
-                     end if
-                  end do
-               end if
-               if (len_trim(id) > 0) then
-                  if (s%kind == surface_element) id = 'element '//trim(id)
-                  call append_message(error, location_string(model, s%loc)//': error: contact surface '// &
-                                      s%name//' is on a second-order element ('//trim(id)//'): TYPE=SURFACE TO SURFACE '// &
-                                      'contact on sides with a middle node is not supported; use TYPE=NODE TO '// &
-                                      'SURFACE, or first-order elements (VPE/VPS, CPE4/CPS4, CPE3/CPS3) along '// &
-                                      'the contact surfaces', err_input)
-                  return
-               end if
-            end associate
-         end do
-      end do
-   end subroutine check_contact_order
 
    !> '' when every side node of a second-order virtual element (corners
    !> xy(:, 1:n/2), side nodes after them) is near enough the middle of its

@@ -1,22 +1,23 @@
 !> The interface node insertion of SURFACE TO SURFACE pairs on a small model whose
 !> result is known by hand: one node inserted into the master side, the element's
 !> connectivity, the renumbered element surfaces and pressure loads, the node
-!> partners; the face curvature on a circle; the refusal of FEM sides.
+!> partners, for first- and second-order sides; inserted points on the chord of a curved
+!> face; the refusal of FEM sides.
 program test_contact_insertion
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t
    use vemcontact_testing, only: checker_t
    use vemcontact_model, only: model_t, contact_pair_t, surface_t, dload_t, surface_element, &
                                plane_strain, form_vem, form_fem, pair_surface_to_surface, dload_pressure, &
-                               etype_polygon
+                               etype_polygon, etype_polygon2
    use vemcontact_test_model, only: make_model
-   use vemcontact_contact_insertion, only: insert_interface_nodes, side_curvature, on_face
+   use vemcontact_contact_insertion, only: insert_interface_nodes, on_face
    implicit none
    type(checker_t) :: t
    type(model_t) :: model, model0
    type(error_t), allocatable :: error
-   integer(ip), allocatable :: added(:), seg(:, :)
-   real(wp), allocatable :: x(:, :), kappa(:)
+   integer(ip), allocatable :: added(:)
+   real(wp), allocatable :: x(:, :)
    real(wp) :: p(2), r
    integer :: k, n
 
@@ -85,23 +86,68 @@ program test_contact_insertion
    call t%check(allocated(error), 'a FEM side is refused')
    if (allocated(error)) call t%check(index(error%message, 'FEM elements have sides') > 0, 'the message says why')
 
-   ! curvature: sides of a regular 12-gon on a circle of radius 5, counter-clockwise
-   ! (a convex boundary: positive); the mid-side point on the curve lies on the circle
-   ! to second order in the side length
-   r = 5.0_wp
+   ! second order: the lower VPE2 square [0,2]x[0,1] (corners 1-4, side nodes 5-8), the
+   ! upper VPE2 squares [0,1]x[1,2] (9-12, 13-16) and [1,2]x[1,2] (10, 17, 18, 11; 19-21,
+   ! 14).  The slave corner 10 at x = 1 projects onto the master side 3 -> 4 at t = 1/2
+   ! (its side node 7): a corner is inserted there, the piece [1/2, 1] keeps node 7 moved
+   ! to its middle (0.5, 1), the piece [0, 1/2] gets a new side node at (1.5, 1), and the
+   ! slave side nodes 13 and 19 face them.
    deallocate (x)
-   allocate (x(2, 12), seg(2, 12))
-   do k = 1, 12
-      x(:, k) = r*[cos(2*acos(-1.0_wp)*(k - 1)/12), sin(2*acos(-1.0_wp)*(k - 1)/12)]
-      seg(:, k) = [int(k, ip), int(mod(k, 12) + 1, ip)]
-   end do
-   kappa = side_curvature(x, seg)
-   ! turning angle 2 pi/12 over the side 2 r sin(pi/12): 1/r * (pi/12)/sin(pi/12)
-   call t%close(kappa(1), (acos(-1.0_wp)/12)/sin(acos(-1.0_wp)/12)/r, 1.0e-12_wp, 'curvature of a regular polygon')
-   p = on_face(x(:, 1), x(:, 2), 0.5_wp, kappa(1))
-   call t%close(norm2(p), r, 2.0e-3_wp, 'the mid-side point on the circle (to 2e-3 r: third order)')
-   call t%check(norm2(p) > norm2(0.5_wp*(x(:, 1) + x(:, 2))), 'moved outward from the chord')
-   p = on_face([0.0_wp, 0.0_wp], [1.0_wp, 0.0_wp], 0.3_wp, 0.0_wp)
+   x = reshape([0.0_wp, 0.0_wp, 2.0_wp, 0.0_wp, 2.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, &
+                1.0_wp, 0.0_wp, 2.0_wp, 0.5_wp, 1.0_wp, 1.0_wp, 0.0_wp, 0.5_wp, &
+                0.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, 2.0_wp, 0.0_wp, 2.0_wp, &
+                0.5_wp, 1.0_wp, 1.0_wp, 1.5_wp, 0.5_wp, 2.0_wp, 0.0_wp, 1.5_wp, &
+                2.0_wp, 1.0_wp, 2.0_wp, 2.0_wp, 1.5_wp, 1.0_wp, 2.0_wp, 1.5_wp, 1.5_wp, 2.0_wp], [2, 21])
+   call make_model(x, [1_ip, 9_ip, 17_ip, 25_ip], &
+                   [1_ip, 2_ip, 3_ip, 4_ip, 5_ip, 6_ip, 7_ip, 8_ip, &
+                    9_ip, 10_ip, 11_ip, 12_ip, 13_ip, 14_ip, 15_ip, 16_ip, &
+                    10_ip, 17_ip, 18_ip, 11_ip, 19_ip, 20_ip, 21_ip, 14_ip], 1.0_wp, 0.3_wp, plane_strain, &
+                   form_vem, 1.0_wp, model, order=2)
+   allocate (model%surfaces(2))
+   model%surfaces(1) = surface_t(name='SLAVE', kind=surface_element, elem=[2_ip, 3_ip], side=[1, 1])
+   model%surfaces(2) = surface_t(name='MASTER', kind=surface_element, elem=[1_ip], side=[3])
+   model%pairs = [contact_pair_t(slave=1, master=2, interaction=1, formulation=pair_surface_to_surface)]
+   call insert_interface_nodes(model, added, error)
+   call t%check(.not. allocated(error), 'second order: insertion without error')
+   if (allocated(error)) print '(a)', error%message
+   call t%equal(int(added(1)), 2, 'a corner and a side node added')
+   call t%check(all(model%elem_conn(model%elem_ptr(1):model%elem_ptr(2) - 1) == &
+                    [1_ip, 2_ip, 3_ip, 22_ip, 4_ip, 5_ip, 6_ip, 23_ip, 7_ip, 8_ip]), &
+                'corners with the inserted one, then a side node per piece')
+   call t%equal(model%elem_type(1), etype_polygon2, 'still a second-order polygon')
+   call t%check(all(abs(model%x(:, 22) - [1.0_wp, 1.0_wp]) <= 1.0e-15_wp), 'the corner at (1, 1)')
+   call t%check(all(abs(model%x(:, 23) - [1.5_wp, 1.0_wp]) <= 1.0e-15_wp), 'the new side node at (1.5, 1)')
+   call t%check(all(abs(model%x(:, 7) - [0.5_wp, 1.0_wp]) <= 1.0e-15_wp), 'the old one moved to (0.5, 1)')
+   call t%check(all(model%surfaces(2)%side == [3, 4]), 'the master facet became its two pieces')
+   if (allocated(model%pairs(1)%partner)) then
+      n = size(model%pairs(1)%partner, 2)
+      call t%equal(n, 5, 'three corner pairs and two side-node pairs')
+      do k = 1, n
+         associate (pr => model%pairs(1)%partner(:, k))
+            select case (pr(1))
+            case (9)
+               call t%equal(int(pr(2)), 4, 'slave 9 faces master 4')
+            case (10)
+               call t%equal(int(pr(2)), 22, 'slave 10 faces the inserted corner')
+            case (17)
+               call t%equal(int(pr(2)), 3, 'slave 17 faces master 3')
+            case (13)
+               call t%equal(int(pr(2)), 7, 'slave side node 13 faces the moved side node 7')
+            case (19)
+               call t%equal(int(pr(2)), 23, 'slave side node 19 faces the new side node')
+            case default
+               call t%check(.false., 'an unexpected slave node in the pairs')
+            end select
+         end associate
+      end do
+   end if
+
+   ! a side of a curved face (a regular 12-gon on a circle of radius 5): the inserted
+   ! point stays on the chord, the element's boundary, not on the circle
+   r = 5.0_wp
+   p = on_face(r*[1.0_wp, 0.0_wp], r*[cos(acos(-1.0_wp)/6), sin(acos(-1.0_wp)/6)], 0.5_wp)
+   call t%close(norm2(p), r*cos(acos(-1.0_wp)/12), 1.0e-15_wp, 'the mid-side point on the chord, inside the circle')
+   p = on_face([0.0_wp, 0.0_wp], [1.0_wp, 0.0_wp], 0.3_wp)
    call t%check(all(abs(p - [0.3_wp, 0.0_wp]) <= 0.0_wp), 'a straight face: exactly on the side')
    call t%finish()
 end program test_contact_insertion

@@ -1,0 +1,180 @@
+"""Hertz contact with SURFACE TO SURFACE (issue 22).  First, an unstructured curved body: the paper's half model
+(disc R = 10 at (0, 20), E = 1e3, on the block [0,10]x[0,10], E = 1e6, nu = 0.3, plane
+strain, 100 N at the top of the half disc; analytical peak p0 = 83.60), but the disc
+is a polygon of `narc` sides on the circle meshed by Voronoi cells (675, graded toward
+the contact point, so about the paper's 1155 elements with the block's 24 x 20 quads).
+Its boundary has nodes at the polygon's vertices and, where cells are smaller than the
+polygon's sides, also on straight pieces between them: the faces that a curvature
+guess once bent.  HARD contact, the disc as slave and as master.
+
+SURFACE TO SURFACE keeps each body's polygon (docs/contact-formulation.md, "Curved
+faces"), so its peak carries the polygon's own error, O(sagitta / side), which falls
+as the polygon is refined: asserted with narc = 240 and 480.
+"""
+import os
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from vctools.mesh.scene import mesh_scene_file
+
+P0 = 83.60
+
+SCENE = """
+[mesh]
+seed = 3
+lloyd = 20
+formulation = "vem"
+
+[[body]]
+name = "DISC"
+polygon = {disc}
+mesher = "voronoi"
+cells = 675
+grading = {{ point = [0.0, 10.0], ratio = 0.08, radius = 10.0 }}
+
+[[body]]
+name = "BLOCK"
+rectangle = [0.0, 0.0, 10.0, 10.0]
+mesher = "quad"
+divisions = [24, 20]
+grading = {{ point = [0.0, 10.0], ratio = 0.2 }}
+
+[[selection]]
+name = "SYMMETRY"
+x = 0.0
+
+[[selection]]
+name = "BLOCK_BOTTOM"
+y = 0.0
+
+[[selection]]
+name = "DISC_TOP"
+point = [0.0, 30.0]
+
+[[contact]]
+name = "DSLAVE"
+slave = "DISC"
+master = "BLOCK"
+slave_where = {{ polyline = {arc} }}
+master_where = {{ y = 10.0 }}
+
+[[contact]]
+name = "DMASTER"
+slave = "BLOCK"
+master = "DISC"
+slave_where = {{ y = 10.0 }}
+master_where = {{ polyline = {arc} }}
+"""
+
+
+@pytest.fixture(scope="module")
+def meshes(tmp_path_factory):
+    out = {}
+    for narc in (240, 480):
+        d = tmp_path_factory.mktemp(f"hertz_{narc}")
+        th = np.linspace(-np.pi / 2, np.pi / 2, narc + 1)
+        disc = [[float(10 * np.cos(t)), float(20 + 10 * np.sin(t))] for t in th]
+        disc[0], disc[-1] = [0.0, 10.0], [0.0, 30.0]
+        scene = d / "hertz.toml"
+        scene.write_text(SCENE.format(disc=disc, arc=disc[: narc // 2 + 1]))
+        mesh_scene_file(scene, out=d / "hertz.inp", echo=None)
+        out[narc] = d
+    return out
+
+
+def peak(exe, d, pair, pair_type):
+    name = f"{pair}_{pair_type.split()[0]}"
+    (d / f"{name}.inp").write_text(f"""*INCLUDE, INPUT=hertz.inp
+*MATERIAL, NAME=D
+*ELASTIC
+1000.0, 0.3
+*MATERIAL, NAME=B
+*ELASTIC
+1.0e6, 0.3
+*SOLID SECTION, ELSET=DISC, MATERIAL=D
+1.0
+*SOLID SECTION, ELSET=BLOCK, MATERIAL=B
+1.0
+*SURFACE INTERACTION, NAME=I
+*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD
+*CONTACT PAIR, INTERACTION=I, TYPE={pair_type}
+{pair}_SLAVE, {pair}_MASTER
+*BOUNDARY
+SYMMETRY, 1
+BLOCK_BOTTOM, 1, 2
+*STEP
+*STATIC
+*CLOAD
+DISC_TOP, 2, -100.0
+*END STEP
+""")
+    r = subprocess.run([exe, "-q", "-o", str(d / "out"), str(d / f"{name}.inp")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with h5py.File(d / "out" / f"{name}.h5", "r") as f:
+        return float(np.array(f["steps/0001/contact/pair_1/CPRESS"]).max())
+
+
+def test_voronoi_disc_slave(exe, meshes):
+    """The disc as slave: the peak within 2 % of p0 with both TYPEs (measured +1.05 %
+    STS, +1.04 % NTS at narc = 480) and closer to it than with narc = 240."""
+    for pair_type in ("SURFACE TO SURFACE", "NODE TO SURFACE"):
+        fine = peak(exe, meshes[480], "DSLAVE", pair_type)
+        coarse = peak(exe, meshes[240], "DSLAVE", pair_type)
+        assert abs(fine / P0 - 1) <= 0.02, (pair_type, fine)
+        assert abs(fine / P0 - 1) < abs(coarse / P0 - 1), (pair_type, coarse, fine)
+
+
+def test_voronoi_disc_master_sts(exe, meshes):
+    """The disc as master with SURFACE TO SURFACE: every inserted node on the disc's
+    polygon; the peak (813 with the former curvature placement) within 4 % of p0
+    (measured +3.4 % at narc = 480, and +2.8 % to +3.4 % from 960 sides down to 480:
+    the pairs' normals are the disc's, which tilt by up to a/R = 0.15 across the
+    contact zone, where the disc as slave, on the flat block's normal, gives +1.05 %)
+    and closer to it than with narc = 240."""
+    fine = peak(exe, meshes[480], "DMASTER", "SURFACE TO SURFACE")
+    coarse = peak(exe, meshes[240], "DMASTER", "SURFACE TO SURFACE")
+    assert abs(fine / P0 - 1) <= 0.04, fine
+    assert abs(fine / P0 - 1) < abs(coarse / P0 - 1), (coarse, fine)
+
+
+def hertz_vpe2(exe, d, include, pair_type):
+    """inputs/hertz_329_vem2.inp (the paper's Hertz with VPE2 bodies, the disc's side
+    nodes on the circle) with HARD and `pair_type`, on the mesh `include`."""
+    src = os.path.join(os.path.dirname(__file__), "..", "..", "inputs")
+    text = open(os.path.join(src, "hertz_329_vem2.inp")).read()
+    text = text.replace("*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1.0e5\n",
+                        "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n")
+    assert "PRESSURE-OVERCLOSURE=HARD" in text
+    text = text.replace("TYPE=NODE TO SURFACE", f"TYPE={pair_type}")
+    text = text.replace("INPUT=meshes/ex2_hertz_329_vem2.inp", f"INPUT={include}")
+    name = "vpe2_" + pair_type.split()[0]
+    (d / f"{name}.inp").write_text(text)
+    r = subprocess.run([exe, "-q", "-o", str(d / "out"), str(d / f"{name}.inp")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with h5py.File(d / "out" / f"{name}.h5", "r") as f:
+        return float(np.array(f["steps/0001/contact/pair_1/CPRESS"]).max())
+
+
+def test_hertz_vpe2_sts(exe, tmp_path):
+    """SURFACE TO SURFACE with second-order virtual elements on the paper's Hertz: the
+    block's corners inserted into the disc's curved sides lie on the sides' quadratics,
+    each piece with its own side node on the same curve.  Peak +1.22 % of 83.60 on the
+    329-element mesh (1081 nodes; NODE TO SURFACE -0.29 %), +0.58 % with the divisions
+    doubled (the finite bodies' limit is about +0.41 %): asserted within 1.5 % and 1 %,
+    and approaching 83.95."""
+    src = os.path.join(os.path.dirname(__file__), "..", "..", "inputs", "meshes")
+    coarse = hertz_vpe2(exe, tmp_path, os.path.abspath(os.path.join(src, "ex2_hertz_329_vem2.inp")),
+                        "SURFACE TO SURFACE")
+    scene = open(os.path.join(os.path.dirname(__file__), "..", "scenes", "ex2_hertz.toml")).read()
+    scene = scene[:scene.index("[[variant]]")].replace("[mesh]\n", "[mesh]\norder = 2\n")
+    scene = scene.replace("divisions = [12, 12, 6]", "divisions = [16, 16, 8]")
+    scene = scene.replace("divisions = [16, 15]", "divisions = [26, 26]")
+    (tmp_path / "fine.toml").write_text(scene)
+    mesh_scene_file(tmp_path / "fine.toml", out=tmp_path / "fine.inp", echo=None)
+    fine = hertz_vpe2(exe, tmp_path, "fine.inp", "SURFACE TO SURFACE")
+    assert abs(coarse / P0 - 1) <= 0.015, coarse
+    assert abs(fine / P0 - 1) <= 0.01, fine
+    assert abs(fine / 83.95 - 1) < abs(coarse / 83.95 - 1)
