@@ -4,7 +4,9 @@
 !> exit status 2 and changes nothing); then the previous run's result files of
 !> the job are removed, so that none of them can be taken for this run's.
 !> Exit status: 0 success, 1 bad input, 2 file error, 3 model not solvable,
-!> 4 solver failure, 5 internal error.
+!> 4 solver failure, 5 internal error, 130 stopped by SIGINT (Ctrl-C), 143 stopped by
+!> SIGTERM (128 + the signal number: the results of the completed steps are kept,
+!> docs/output-format.md).
 program vemcontact_main
    use vemcontact_kinds, only: wp, i8
    use vemcontact_error, only: error_t, fatal_error, err_input, err_model, err_solver
@@ -23,6 +25,8 @@ program vemcontact_main
       mpi_launched
    use vemcontact_output_phases, only: write_phases
    use vemcontact_app_blas_threads, only: set_blas_threads
+   use vemcontact_interrupt, only: install_interrupt_handlers, interrupt_error, interrupt_context, is_interrupt
+   use vemcontact_solver_stop, only: agreed_stop_signal
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -47,6 +51,8 @@ program vemcontact_main
    character(len=:), allocatable :: job, note
    character(len=16) :: buf
 
+   ! SIGINT and SIGTERM stop the run at the next safe point (vemcontact_interrupt)
+   call install_interrupt_handlers()
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
    if (cli%help) then
@@ -70,6 +76,8 @@ program vemcontact_main
    if (uses_petsc(cli%solver) .or. mpi_launched()) then
       call petsc_initialize(cli%petsc_options, error)
       if (allocated(error)) call fail(error)
+      ! PETSc installs its own handler for SIGTERM
+      call install_interrupt_handlers()
       if (petsc_ranks() > 1) then
          if (cli%solver == solver_auto) cli%solver = solver_gamg
          if (.not. uses_petsc(cli%solver)) then
@@ -114,6 +122,12 @@ program vemcontact_main
    call choose_solver()
    ! reading ends with the choice of solver (and PETSc's start for it)
    call log%lap('read')
+   iw = agreed_stop_signal()
+   if (iw > 0) then
+      call interrupt_error(iw, 'after reading the deck', error)
+      call interrupt_context(error, '', 0)
+      call fail(error)
+   end if
 
    collective_phase = .false.
    opts%out_dir = cli%out_dir
@@ -181,6 +195,7 @@ contains
       end if
       if (uses_petsc(cli%solver)) then
          call petsc_initialize(cli%petsc_options, error)
+         call install_interrupt_handlers()
          if (allocated(error)) then
             if (.not. auto) call fail(error)
             deallocate (error)
@@ -217,6 +232,8 @@ contains
       type(error_t), intent(in) :: err
       integer :: r
       r = petsc_rank()
+      ! every process stops at the same safe point on SIGINT/SIGTERM: rank 0 reports
+      if (is_interrupt(err%code)) collective_phase = .true.
       if (r > 0 .and. .not. collective_phase .and. (err%code == err_input .or. err%code == err_model .or. &
                                              err%code == err_solver)) &
          call pause_seconds(rank0_grace_s)

@@ -2,7 +2,8 @@
 !> Every completed step is in the VTU and PVD files before the next starts and
 !> in the HDF5 file, which gets its final name when the run ends: a run that
 !> fails part way keeps the steps it completed (the HDF5 file without the step
-!> that failed and marked `complete = 0`); a killed run leaves no HDF5 file.
+!> that failed and marked `complete = 0`); a run stopped by SIGINT or SIGTERM
+!> likewise (marked `interrupted` too); a run killed otherwise leaves no HDF5 file.
 module vemcontact_driver_static
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, append_message
@@ -29,6 +30,8 @@ module vemcontact_driver_static
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_log, only: logger_t
+   use vemcontact_interrupt, only: interrupt_error, interrupt_context, is_interrupt, err_interrupt_base
+   use vemcontact_solver_stop, only: agreed_stop_signal
    implicit none
    private
 
@@ -54,7 +57,9 @@ contains
    !> Run every step.  The model gains the interface nodes of SURFACE TO SURFACE
    !> contact pairs (contact_state_t%init) before anything is assembled.  When a
    !> step fails, the HDF5 file keeps the steps before it and is closed with
-   !> `complete = 0`.
+   !> `complete = 0`; when SIGINT or SIGTERM stops the run (between steps or contact
+   !> iterations: vemcontact_interrupt), likewise, with the root attribute
+   !> `interrupted` and the error saying where it stopped.
    subroutine run_static(model, opts, log, error)
       type(model_t), intent(inout) :: model
       type(run_options_t), intent(in) :: opts
@@ -63,13 +68,22 @@ contains
       type(h5_writer_t) :: h5
       type(error_t), allocatable :: err2
       integer :: current, done
+      character(len=24) :: b
       current = 0
       done = 0
       call run_steps(model, opts, log, h5, current, done, error)
-      if (.not. allocated(error) .or. .not. h5%is_open()) return
+      if (.not. allocated(error)) return
+      if (is_interrupt(error%code)) then
+         b = ''
+         if (current > done) write (b, '(a,i0)') 'in step ', current
+         call interrupt_context(error, trim(b), done)
+      end if
+      if (.not. h5%is_open()) return
       if (current > done) call h5%discard_step(current, err2)
       if (allocated(err2)) then
          call h5%discard()
+      else if (is_interrupt(error%code)) then
+         call h5%close(err2, interrupted=error%code - err_interrupt_base)
       else
          call h5%close(err2)
       end if
@@ -218,6 +232,12 @@ contains
       u = 0.0_wp
       call log%lap('write mesh')
       do istep = 1, size(model%steps)
+         ! a safe point, the same on every process
+         iw = agreed_stop_signal()
+         if (iw > 0) then
+            call interrupt_error(iw, 'before step '//int_str(istep)//' ('//step_name(istep)//')', error)
+            return
+         end if
          current = istep
          log%step = istep
          name = step_name(istep)
@@ -433,6 +453,14 @@ contains
             call log%say(trim(line))
          end do
       end subroutine log_reactions
+
+      function int_str(i) result(s)
+         integer, intent(in) :: i
+         character(len=:), allocatable :: s
+         character(len=16) :: b
+         write (b, '(i0)') i
+         s = trim(b)
+      end function int_str
 
       function step_name(i) result(s)
          integer, intent(in) :: i
