@@ -251,6 +251,6 @@ contains
       flush (error_unit)
       if (.not. collective_phase .and. petsc_ranks() > 1) call petsc_abort(err%code)
       call petsc_finalize()
-      call exit_process(err%code)
+      call exit_process(err%code, now=.true.)
    end subroutine fail
 end program vemcontact_main

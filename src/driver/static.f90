@@ -14,6 +14,7 @@ module vemcontact_driver_static
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_validate, only: element_warnings
+   use vemcontact_driver_ranges, only: validate_ranges
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
    use vemcontact_post_stress, only: nodal_average
@@ -120,6 +121,10 @@ contains
       character(len=256) :: buf
       character(len=:), allocatable :: base, vtu_name, name
 
+      ! the magnitudes before anything is computed from them (the contact stiffness
+      ! of contact%init is E times the thickness); sys%setup checks the rest
+      call validate_ranges(model, error)
+      if (allocated(error)) return
       call contact%init(model, error)
       if (allocated(error)) return
       do ip_ = 1, size(contact%inserted)

@@ -233,3 +233,10 @@ else()
   vc_skipped_test(interrupt_mpi "needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
 endif()
 set_tests_properties(interrupt_mpi PROPERTIES LABELS deck)
+
+# the bad-input corpus and numeric fuzz mutants (bench/corpus_runner.py), the small
+# decks only: no signal, trap or backtrace, an exit status of the program (0..5)
+add_test(NAME corpus_quick
+  COMMAND "${VC_PYTHON}" "${PROJECT_SOURCE_DIR}/bench/corpus_runner.py" --exe $<TARGET_FILE:vemcontact>
+          --quick --mutants 6 --keep "${CMAKE_CURRENT_BINARY_DIR}/corpus-quick")
+set_tests_properties(corpus_quick PROPERTIES LABELS deck TIMEOUT 300)

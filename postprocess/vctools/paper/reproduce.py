@@ -42,6 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from vctools.cli import entry
 from vctools.plot.results import ResultError
 from . import runs as rr
 
@@ -519,6 +520,7 @@ def dam_stats(h5: str) -> dict:
 
 
 # ------------------------------------------------------------------ main
+@entry("vc-paper")
 def main(argv=None) -> int:
     doc = __doc__.split("\n\n")
     p = argparse.ArgumentParser(prog="vc-paper", description=doc[0],
