@@ -15,6 +15,7 @@ module vemcontact_driver_static
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_validate, only: element_warnings
    use vemcontact_driver_ranges, only: validate_ranges
+   use vemcontact_driver_contact_checks, only: check_contact_pairs
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
    use vemcontact_post_stress, only: nodal_average
@@ -124,6 +125,10 @@ contains
       ! the magnitudes before anything is computed from them (the contact stiffness
       ! of contact%init is E times the thickness); sys%setup checks the rest
       call validate_ranges(model, error)
+      if (allocated(error)) return
+      ! pairs that would make the contact meaningless (a face on its own master's element,
+      ! an overclosure no contact starts with)
+      call check_contact_pairs(model, error)
       if (allocated(error)) return
       call contact%init(model, error)
       if (allocated(error)) return
