@@ -6,7 +6,6 @@ curve is h^2/(8R)).  Two unit squares, the upper one on the lower one; the files
 read as data (h5py) where the run succeeds."""
 from __future__ import annotations
 
-import os
 import subprocess
 
 import h5py
