@@ -133,3 +133,14 @@ def test_maxit_bounded(exe, tmp_path):
     assert code == 1, err
     assert "maxit.inp:" in err and len(err) < 1024
     assert rss < MAX_RSS_KB
+
+
+def test_long_name_quoted_briefly(exe, tmp_path):
+    """A 60 000-character interaction name (within the line limit) quoted in a message:
+    the message line is cut at 400 characters (src/text.f90, cap_lines)."""
+    text = open(os.path.join(ROOT, "tests", "integration", "decks", "sliding_rebuild.inp")).read()
+    deck = tmp_path / "longname.inp"
+    deck.write_text(text.replace("*CONTACT PAIR, INTERACTION=SLIDE", "*CONTACT PAIR, INTERACTION=SLIDE" + "Y" * 60000, 1))
+    code, err, _ = run(exe, deck, tmp_path / "out")
+    assert_refused(code, err, 1, "longname.inp")
+    assert "more characters)" in err

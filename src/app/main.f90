@@ -16,7 +16,7 @@ program vemcontact_main
    use vemcontact_clock, only: wall_time
    use vemcontact_app_process, only: exit_process, make_directory, pause_seconds
    use vemcontact_safe_file, only: job_lock_t, lock_job, remove_job_files
-   use vemcontact_text, only: escape_controls
+   use vemcontact_text, only: escape_controls, cap_lines
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
    use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_cholmod, solver_kind, &
@@ -117,7 +117,7 @@ program vemcontact_main
    if (allocated(error)) call fail(error)
    ! valid input that is partly ignored (output variables vemcontact does not compute, ...)
    do iw = 1, size(model%warnings)
-      call log%say(model%warnings(iw)%s)
+      call log%say(cap_lines(model%warnings(iw)%s))
    end do
    call choose_solver()
    ! reading ends with the choice of solver (and PETSc's start for it)
@@ -238,14 +238,14 @@ contains
                                              err%code == err_solver)) &
          call pause_seconds(rank0_grace_s)
       if (r == 0) then
-         write (error_unit, '(a)') escape_controls(err%message)
+         write (error_unit, '(a)') escape_controls(cap_lines(err%message))
       else if (.not. collective_phase) then
          write (buf, '(i0)') r
-         write (error_unit, '(a)') 'MPI rank '//trim(buf)//': '//escape_controls(err%message)
+         write (error_unit, '(a)') 'MPI rank '//trim(buf)//': '//escape_controls(cap_lines(err%message))
       end if
       if (log%opened) then
          log%quiet = .true.
-         call log%say(err%message)
+         call log%say(cap_lines(err%message))
          call log%close()
       end if
       flush (error_unit)
