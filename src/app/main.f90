@@ -25,7 +25,8 @@ program vemcontact_main
       mpi_launched
    use vemcontact_output_phases, only: write_phases
    use vemcontact_app_blas_threads, only: set_blas_threads
-   use vemcontact_interrupt, only: install_interrupt_handlers, interrupt_error, interrupt_context, is_interrupt
+   use vemcontact_interrupt, only: install_interrupt_handlers, interrupt_error, interrupt_context, is_interrupt, &
+      stop_signal
    use vemcontact_solver_stop, only: agreed_stop_signal
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
@@ -235,8 +236,12 @@ contains
       ! every process stops at the same safe point on SIGINT/SIGTERM: rank 0 reports
       if (is_interrupt(err%code)) collective_phase = .true.
       if (r > 0 .and. .not. collective_phase .and. (err%code == err_input .or. err%code == err_model .or. &
-                                             err%code == err_solver)) &
+                                             err%code == err_solver)) then
          call pause_seconds(rank0_grace_s)
+         ! the launcher ends this process (SIGTERM) once rank 0 has reported and ended:
+         ! then end without a second report
+         if (stop_signal() > 0) call exit_process(err%code, now=.true.)
+      end if
       if (r == 0) then
          write (error_unit, '(a)') escape_controls(cap_lines(err%message))
       else if (.not. collective_phase) then
