@@ -5,7 +5,12 @@ module vemcontact_text
    implicit none
    private
 
-   public :: escape_controls
+   public :: escape_controls, cap_lines
+
+   !> Longest line of a message shown to the user: deck text quoted in a message
+   !> (a parameter value, a name) is cut there, so that no input makes a message
+   !> longer than a few lines however long its lines are.
+   integer, parameter, public :: max_message_line = 400
 
 contains
 
@@ -37,6 +42,38 @@ contains
          end if
       end do
    end function escape_controls
+
+   !> `s` with every line (between line feeds) longer than `max_message_line`
+   !> characters cut there and marked with ' ... (N more characters)'.
+   pure function cap_lines(s) result(e)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: e
+      character(len=24) :: b
+      integer :: a, z, n
+      if (len(s) <= max_message_line) then
+         e = s
+         return
+      end if
+      e = ''
+      a = 1
+      do while (a <= len(s))
+         z = index(s(a:), new_line('a'))
+         if (z == 0) then
+            z = len(s) + 1
+         else
+            z = a + z - 1
+         end if
+         n = z - a
+         if (n > max_message_line) then
+            write (b, '(i0)') n - max_message_line
+            e = e//s(a:a + max_message_line - 1)//' ... ('//trim(b)//' more characters)'
+         else
+            e = e//s(a:z - 1)
+         end if
+         if (z <= len(s)) e = e//new_line('a')
+         a = z + 1
+      end do
+   end function cap_lines
 
    pure logical function is_shown_escaped(c)
       integer, intent(in) :: c

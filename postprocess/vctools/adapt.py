@@ -46,6 +46,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
+from .cli import entry
 from .mesh.deck import write_deck
 from .mesh.errors import MeshError
 from .mesh.geometry import points_in_polygon
@@ -356,6 +357,7 @@ def _parser():
     return p
 
 
+@entry("vc-adapt")
 def main(argv=None):
     a = _parser().parse_args(argv)
     try:

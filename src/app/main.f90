@@ -4,7 +4,9 @@
 !> exit status 2 and changes nothing); then the previous run's result files of
 !> the job are removed, so that none of them can be taken for this run's.
 !> Exit status: 0 success, 1 bad input, 2 file error, 3 model not solvable,
-!> 4 solver failure, 5 internal error.
+!> 4 solver failure, 5 internal error, 130 stopped by SIGINT (Ctrl-C), 143 stopped by
+!> SIGTERM (128 + the signal number: the results of the completed steps are kept,
+!> docs/output-format.md).
 program vemcontact_main
    use vemcontact_kinds, only: wp, i8
    use vemcontact_error, only: error_t, fatal_error, err_input, err_model, err_solver
@@ -14,7 +16,7 @@ program vemcontact_main
    use vemcontact_clock, only: wall_time
    use vemcontact_app_process, only: exit_process, make_directory, pause_seconds
    use vemcontact_safe_file, only: job_lock_t, lock_job, remove_job_files
-   use vemcontact_text, only: escape_controls
+   use vemcontact_text, only: escape_controls, cap_lines
    use vemcontact_deck_reader, only: read_deck
    use vemcontact_driver_static, only: run_options_t, run_static
    use vemcontact_solver_factory, only: uses_petsc, solver_auto, solver_gamg, solver_cholmod, solver_kind, &
@@ -23,6 +25,9 @@ program vemcontact_main
       mpi_launched
    use vemcontact_output_phases, only: write_phases
    use vemcontact_app_blas_threads, only: set_blas_threads
+   use vemcontact_interrupt, only: install_interrupt_handlers, interrupt_error, interrupt_context, is_interrupt, &
+      stop_signal
+   use vemcontact_solver_stop, only: agreed_stop_signal
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    implicit none
    type(cli_t) :: cli
@@ -47,6 +52,8 @@ program vemcontact_main
    character(len=:), allocatable :: job, note
    character(len=16) :: buf
 
+   ! SIGINT and SIGTERM stop the run at the next safe point (vemcontact_interrupt)
+   call install_interrupt_handlers()
    call parse_command_line(cli, error)
    if (allocated(error)) call fail(error)
    if (cli%help) then
@@ -70,6 +77,8 @@ program vemcontact_main
    if (uses_petsc(cli%solver) .or. mpi_launched()) then
       call petsc_initialize(cli%petsc_options, error)
       if (allocated(error)) call fail(error)
+      ! PETSc installs its own handler for SIGTERM
+      call install_interrupt_handlers()
       if (petsc_ranks() > 1) then
          if (cli%solver == solver_auto) cli%solver = solver_gamg
          if (.not. uses_petsc(cli%solver)) then
@@ -109,11 +118,17 @@ program vemcontact_main
    if (allocated(error)) call fail(error)
    ! valid input that is partly ignored (output variables vemcontact does not compute, ...)
    do iw = 1, size(model%warnings)
-      call log%say(model%warnings(iw)%s)
+      call log%say(cap_lines(model%warnings(iw)%s))
    end do
    call choose_solver()
    ! reading ends with the choice of solver (and PETSc's start for it)
    call log%lap('read')
+   iw = agreed_stop_signal()
+   if (iw > 0) then
+      call interrupt_error(iw, 'after reading the deck', error)
+      call interrupt_context(error, '', 0)
+      call fail(error)
+   end if
 
    collective_phase = .false.
    opts%out_dir = cli%out_dir
@@ -182,6 +197,7 @@ contains
       end if
       if (uses_petsc(cli%solver)) then
          call petsc_initialize(cli%petsc_options, error)
+         call install_interrupt_handlers()
          if (allocated(error)) then
             if (.not. auto) call fail(error)
             deallocate (error)
@@ -218,23 +234,29 @@ contains
       type(error_t), intent(in) :: err
       integer :: r
       r = petsc_rank()
+      ! every process stops at the same safe point on SIGINT/SIGTERM: rank 0 reports
+      if (is_interrupt(err%code)) collective_phase = .true.
       if (r > 0 .and. .not. collective_phase .and. (err%code == err_input .or. err%code == err_model .or. &
-                                             err%code == err_solver)) &
+                                             err%code == err_solver)) then
          call pause_seconds(rank0_grace_s)
+         ! the launcher ends this process (SIGTERM) once rank 0 has reported and ended:
+         ! then end without a second report
+         if (stop_signal() > 0) call exit_process(err%code, now=.true.)
+      end if
       if (r == 0) then
-         write (error_unit, '(a)') escape_controls(err%message)
+         write (error_unit, '(a)') escape_controls(cap_lines(err%message))
       else if (.not. collective_phase) then
          write (buf, '(i0)') r
-         write (error_unit, '(a)') 'MPI rank '//trim(buf)//': '//escape_controls(err%message)
+         write (error_unit, '(a)') 'MPI rank '//trim(buf)//': '//escape_controls(cap_lines(err%message))
       end if
       if (log%opened) then
          log%quiet = .true.
-         call log%say(err%message)
+         call log%say(cap_lines(err%message))
          call log%close()
       end if
       flush (error_unit)
       if (.not. collective_phase .and. petsc_ranks() > 1) call petsc_abort(err%code)
       call petsc_finalize()
-      call exit_process(err%code)
+      call exit_process(err%code, now=.true.)
    end subroutine fail
 end program vemcontact_main

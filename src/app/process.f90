@@ -13,6 +13,10 @@ module vemcontact_app_process
          import :: c_int
          integer(c_int), value :: status
       end subroutine c_exit
+      subroutine c_exit_now(status) bind(C, name='_exit')
+         import :: c_int
+         integer(c_int), value :: status
+      end subroutine c_exit_now
       function c_sleep(seconds) result(left) bind(C, name='sleep')
          import :: c_int
          integer(c_int), value :: seconds
@@ -28,11 +32,18 @@ module vemcontact_app_process
 
 contains
 
-   !> Flush Fortran units and end the process with `status`.
-   subroutine exit_process(status)
+   !> Flush Fortran units and end the process with `status`.  With `now`, the exit
+   !> handlers of the libraries are skipped (_exit): after an error, HDF5's handler
+   !> would try again to flush a results file whose writing failed (a full disk) and
+   !> can crash doing so; everything the program keeps is closed before it ends.
+   subroutine exit_process(status, now)
       integer, intent(in) :: status
+      logical, intent(in), optional :: now
       flush (6)
       flush (0)
+      if (present(now)) then
+         if (now) call c_exit_now(int(status, c_int))
+      end if
       call c_exit(int(status, c_int))
    end subroutine exit_process
 

@@ -26,6 +26,8 @@ module vemcontact_contact_iteration
    use vemcontact_linalg_cg, only: pcg, cg_result_t
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
+   use vemcontact_interrupt, only: interrupt_error
+   use vemcontact_solver_stop, only: agreed_stop_signal
    implicit none
    private
 
@@ -234,6 +236,13 @@ contains
       if (present(log)) call log%say('  iter  active  changed     residual  max penetration  max pressure'// &
                                      '    time [s]  factorize [s]  search [s]    step')
       do it = 1, maxit
+         ! a safe point to stop at on SIGINT/SIGTERM, the same on every process
+         j = agreed_stop_signal()
+         if (j > 0) then
+            write (buf, '(a,i0)') 'before contact iteration ', it
+            call interrupt_error(j, trim(buf), error)
+            return
+         end if
          sys%iterations = it
          t_iter = wall_time()
          call sys%contact_matrix(model, contact, u, fixed, prescribed, fext, f, rebuilt, error)

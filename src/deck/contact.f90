@@ -28,6 +28,10 @@ module vemcontact_deck_contact
    character(len=*), parameter :: side_help = 'sides are S1, S2, ...: side Sk runs from node k to node k+1 '// &
                                               'of the element (S1 = nodes 1-2, the last side back to node 1)'
 
+   !> Largest MAXIT of *CONTACT CONTROLS: the hardest contact decks measured need
+   !> under 100 iterations, and the iteration's per-iteration history is sized by it.
+   integer, parameter :: max_contact_iterations = 1000
+
 contains
 
    !> Contact definitions hold in every step: they must come before the first *STEP.
@@ -460,9 +464,20 @@ contains
       p%controls_loc = here(p)
       call get_param(kw, 'MAXIT', val, found)
       if (found) then
-         ! the registry has checked it is a positive integer
+         ! the registry has checked it is a positive integer; the iteration keeps each
+         ! slave node's state of every iteration (arrays of MAXIT + 1 columns), so the
+         ! count is bounded before anything is sized by it
          call parse_int(squeeze(val), maxit, stat)
-         if (stat == num_ok) model%controls%max_iterations = maxit
+         if (stat == num_ok) then
+            if (maxit <= max_contact_iterations) then
+               model%controls%max_iterations = maxit
+            else
+               call err_here(p, 'MAXIT = '//squeeze(val)//' is beyond the limit of '// &
+                             int_str(max_contact_iterations)//' contact iterations per step', &
+                             'a contact iteration that has not converged in a few hundred iterations '// &
+                             'will not: see docs/contact-formulation.md for what to change instead')
+            end if
+         end if
       end if
       call get_param(kw, 'TOLERANCE', val, found)
       if (found) then

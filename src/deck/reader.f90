@@ -5,9 +5,9 @@
 !> offending text and a hint).
 module vemcontact_deck_reader
    use vemcontact_model, only: model_t
-   use vemcontact_error, only: error_t, fatal_error, err_io
+   use vemcontact_error, only: error_t, fatal_error, err_io, err_input
    use vemcontact_deck_state, only: deck_parser_t
-   use vemcontact_deck_source, only: push_ok
+   use vemcontact_deck_source, only: push_ok, push_not_text
    use vemcontact_deck_parser, only: parse_lines
    use vemcontact_deck_finish, only: finish_model
    implicit none
@@ -29,7 +29,8 @@ contains
       integer :: stat
       call p%src%push_file(path, stat, msg)
       if (stat /= push_ok) then
-         call fatal_error(error, path//': error: '//msg, err_io)
+         ! a file that cannot be read: a file error; one that is no deck: bad input
+         call fatal_error(error, path//': error: '//msg, merge(err_input, err_io, stat == push_not_text))
          return
       end if
       call parse_lines(p, model)

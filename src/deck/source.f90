@@ -1,5 +1,5 @@
 !> Deck files as a stream of lines: whole-file reads, the *INCLUDE stack and line continuation.
-!> Each file is read in one unformatted stream READ into a buffer and lines are cut
+!> Each file is read whole into a buffer (vemcontact_deck_file: regular text files only) and lines are cut
 !> from it; comment (`**`) and blank lines are skipped here.  The current line is
 !> copied, trimmed, into `text(1:length)`, a buffer that only grows, so the hot loop
 !> allocates nothing.  Buffers of all files are kept until the source is dropped so
@@ -9,6 +9,7 @@
 !> like a line feed; CR LF line ends work as before (the CR is trimmed).
 module vemcontact_deck_source
    use vemcontact_kinds, only: i8
+   use vemcontact_deck_file, only: read_text_file
    implicit none
    private
 
@@ -23,6 +24,7 @@ module vemcontact_deck_source
    integer, parameter, public :: push_unreadable = 1
    integer, parameter, public :: push_cycle = 2
    integer, parameter, public :: push_too_deep = 3
+   integer, parameter, public :: push_not_text = 4
 
    !> Nesting limit of *INCLUDE; cycles are detected by path before this is reached.
    integer, parameter :: max_depth = 40
@@ -65,8 +67,10 @@ module vemcontact_deck_source
 
 contains
 
-   !> Read `path` whole and make it the file lines come from next.
-   !> `message` explains a failure (push_unreadable, push_cycle, push_too_deep).
+   !> Read `path` whole (a regular text file, lines of at most max_line_length
+   !> characters: vemcontact_deck_file) and make it the file lines come from next.
+   !> `message` explains a failure (push_unreadable, push_cycle, push_too_deep,
+   !> push_not_text).
    subroutine push_file(self, path, stat, message)
       class(deck_source_t), intent(inout) :: self
       character(len=*), intent(in) :: path
@@ -75,9 +79,9 @@ contains
       character(len=:), allocatable :: npath
       type(file_buf_t), allocatable :: tmpf(:)
       type(open_file_t), allocatable :: tmps(:)
-      character(len=256) :: iomsg
-      integer :: k, u, ios, ifile
-      integer(i8) :: fsize
+      character(len=:), allocatable :: buf
+      integer :: k, ifile
+      logical :: not_text
 
       stat = push_ok
       npath = normalize_path(path)
@@ -99,15 +103,11 @@ contains
          if (self%files(k)%path == npath) ifile = k
       end do
       if (ifile == 0) then
-         open (newunit=u, file=npath, access='stream', form='unformatted', action='read', &
-               status='old', iostat=ios, iomsg=iomsg)
-         if (ios /= 0) then
-            stat = push_unreadable
-            message = 'cannot open '''//npath//''': '//trim(strip_prefix(iomsg))
+         call read_text_file(npath, buf, message, not_text)
+         if (allocated(message)) then
+            stat = merge(push_not_text, push_unreadable, not_text)
             return
          end if
-         inquire (unit=u, size=fsize)
-         if (fsize < 0) fsize = 0
          if (.not. allocated(self%files)) allocate (self%files(4))
          if (self%nfiles == size(self%files)) then
             allocate (tmpf(2*size(self%files)))
@@ -118,17 +118,7 @@ contains
             call move_alloc(tmpf, self%files)
          end if
          ifile = self%nfiles + 1
-         allocate (character(len=fsize) :: self%files(ifile)%buf)
-         if (fsize > 0) then
-            read (u, iostat=ios, iomsg=iomsg) self%files(ifile)%buf
-         end if
-         close (u)
-         if (ios /= 0) then
-            deallocate (self%files(ifile)%buf)
-            stat = push_unreadable
-            message = 'cannot read '''//npath//''': '//trim(iomsg)
-            return
-         end if
+         call move_alloc(buf, self%files(ifile)%buf)
          call normalize_line_ends(self%files(ifile)%buf)
          self%files(ifile)%path = npath
          self%nfiles = ifile
@@ -161,19 +151,6 @@ contains
          buf(k:k) = lf
       end do
    end subroutine normalize_line_ends
-
-   !> gfortran's iomsg starts with "Cannot open file '...': "; keep only the reason.
-   pure function strip_prefix(msg) result(r)
-      character(len=*), intent(in) :: msg
-      character(len=:), allocatable :: r
-      integer :: k
-      k = index(msg, ''': ', back=.true.)
-      if (k > 0) then
-         r = msg(k + 3:)
-      else
-         r = msg
-      end if
-   end function strip_prefix
 
    !> Advance to the next keyword or data line (skipping comments and blanks), popping
    !> finished included files; kind = line_eof when all files are done.

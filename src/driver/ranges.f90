@@ -44,10 +44,12 @@ contains
 
       ! extent of the model: the largest coordinate difference (at least the
       ! smallest positive one the checks of the elements allow)
+      ! (halves: the difference of two coordinates near the double range's end would
+      ! overflow; this check may run before the elements' own coordinate check)
       lext = 0.0_wp
-      if (model%nnode > 0) lext = maxval(maxval(model%x(:, 1:model%nnode), dim=2) - &
-                                         minval(model%x(:, 1:model%nnode), dim=2))
-      lext = log10(max(lext, 1.0e-130_wp))
+      if (model%nnode > 0) lext = maxval(0.5_wp*maxval(model%x(:, 1:model%nnode), dim=2) - &
+                                         0.5_wp*minval(model%x(:, 1:model%nnode), dim=2))
+      lext = log10(max(lext, 0.5e-130_wp)) + log10(2.0_wp)
 
       ! single values
       if (allocated(model%materials)) then

@@ -3,8 +3,9 @@
 !> Every completed step is in the VTU files before the next starts and in the
 !> HDF5 file, which gets its final name when the run ends: a run that fails part
 !> way keeps the steps it completed (the HDF5 file without the step that failed
-!> and marked `complete = 0`, the .pvd listing the steps completed); a killed
-!> run leaves no HDF5 file.
+!> and marked `complete = 0`, the .pvd listing the steps completed); a run stopped
+!> by SIGINT or SIGTERM likewise (marked `interrupted` too); a run killed otherwise
+!> leaves no HDF5 file.
 !>
 !> The run is a sequence of stages on one `run_state_t`: the set-up report
 !> (set_up), the result files (open_files), then per step its increments
@@ -19,6 +20,8 @@ module vemcontact_driver_static
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_validate, only: element_warnings
+   use vemcontact_driver_ranges, only: validate_ranges
+   use vemcontact_driver_contact_checks, only: check_contact_pairs
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_increments, only: increment_control_t, loads_at
    use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
@@ -37,6 +40,8 @@ module vemcontact_driver_static
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_log, only: logger_t
+   use vemcontact_interrupt, only: interrupt_error, interrupt_context, is_interrupt, err_interrupt_base
+   use vemcontact_solver_stop, only: agreed_stop_signal
    implicit none
    private
 
@@ -107,8 +112,14 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(run_state_t) :: rs
       type(error_t), allocatable :: err2
+      character(len=24) :: b
       call run_steps(model, opts, log, rs, error)
       if (.not. allocated(error)) return
+      if (is_interrupt(error%code)) then
+         b = ''
+         if (rs%current > rs%done) write (b, '(a,i0)') 'in step ', rs%current
+         call interrupt_context(error, trim(b), rs%done)
+      end if
       ! the .pvd lists every completed step, and only those
       if (opts%write_files .and. opts%write_vtu .and. rs%done > rs%pvd_steps) then
          rs%pvd%n = rs%pvd_done
@@ -120,6 +131,8 @@ contains
       if (rs%current > rs%done) call rs%h5%discard_step(rs%current, err2)
       if (allocated(err2)) then
          call rs%h5%discard()
+      else if (is_interrupt(error%code)) then
+         call rs%h5%close(err2, interrupted=error%code - err_interrupt_base)
       else
          call rs%h5%close(err2)
          if (.not. allocated(err2)) &
@@ -135,7 +148,8 @@ contains
       type(logger_t), intent(inout) :: log
       type(run_state_t), intent(inout) :: rs
       type(error_t), allocatable, intent(out) :: error
-      integer :: istep
+      integer :: istep, sig
+      character(len=16) :: b
       call set_up(model, opts, log, rs, error)
       if (allocated(error)) return
       call open_files(model, opts, log, rs, error)
@@ -143,6 +157,13 @@ contains
       call init_state(model, rs)
       call log%lap('write mesh')
       do istep = 1, size(model%steps)
+         ! a safe point, the same on every process
+         sig = agreed_stop_signal()
+         if (sig > 0) then
+            write (b, '(i0)') istep
+            call interrupt_error(sig, 'before step '//trim(b)//' ('//step_name(model, istep)//')', error)
+            return
+         end if
          call run_step(model, opts, log, rs, istep, error)
          if (allocated(error)) return
       end do
@@ -171,6 +192,14 @@ contains
       type(string_t), allocatable :: warnings(:)
       character(len=256) :: buf
       integer :: iw
+      ! the magnitudes before anything is computed from them (the contact stiffness
+      ! of contact%init is E times the thickness); sys%setup checks the rest
+      call validate_ranges(model, error)
+      if (allocated(error)) return
+      ! pairs that would make the contact meaningless (a face on its own master's element,
+      ! an overclosure no contact starts with)
+      call check_contact_pairs(model, error)
+      if (allocated(error)) return
       call rs%contact%init(model, error)
       if (allocated(error)) return
       call report_model(model, rs%contact, log)

@@ -47,28 +47,37 @@ contains
    pure subroutine polygon_centroid(xy, c)
       real(wp), intent(in) :: xy(:, :)
       real(wp), intent(out) :: c(2)
-      real(wp) :: a, w, p(2), q(2)
+      real(wp) :: a, w, p(2), q(2), s
       integer :: k, n
       n = size(xy, 2)
       if (n == 0) then
          c = 0.0_wp
          return
       end if
+      ! the sums below are cubic in the lengths: relative to x1 and scaled by the
+      ! largest offset s, they stay of order one for any element inside the
+      ! documented coordinate range (1e130 cubed would overflow)
+      s = 0.0_wp
+      do k = 2, n
+         s = max(s, maxval(abs(xy(:, k) - xy(:, 1))))
+      end do
       a = 0.0_wp
       c = 0.0_wp
-      do k = 2, n - 1
-         p = xy(:, k) - xy(:, 1)
-         q = xy(:, k + 1) - xy(:, 1)
-         w = cross2(p, q)
-         a = a + w
-         ! centroid of triangle (x1, xk, xk+1) relative to x1 is (p+q)/3,
-         ! weighted by twice its signed area
-         c = c + w*(p + q)
-      end do
+      if (s > 0.0_wp) then
+         do k = 2, n - 1
+            p = (xy(:, k) - xy(:, 1))/s
+            q = (xy(:, k + 1) - xy(:, 1))/s
+            w = cross2(p, q)
+            a = a + w
+            ! centroid of triangle (x1, xk, xk+1) relative to x1 is (p+q)/3,
+            ! weighted by twice its signed area
+            c = c + w*(p + q)
+         end do
+      end if
       if (.not. abs(a) > 0.0_wp) then
-         c = sum(xy, dim=2)/real(n, wp)
+         c = xy(:, 1) + sum(xy - spread(xy(:, 1), 2, n), dim=2)/real(n, wp)
       else
-         c = xy(:, 1) + c/(3.0_wp*a)
+         c = xy(:, 1) + s*(c/(3.0_wp*a))
       end if
    end subroutine polygon_centroid
 

@@ -524,13 +524,16 @@ contains
    end subroutine h5_discard_step
 
    !> Finish the file: root attribute `complete` (1 when `complete` is true: the
-   !> run finished; 0 by default), close it with HDF5, fsync it and rename it to
+   !> run finished; 0 by default), with `interrupted` the root attribute of that name
+   !> (the signal number that stopped the run), close it with HDF5, fsync it and rename it to
    !> its final name.  On any failure the temporary is removed (no file of that
    !> name, rather than a torn one) and `error` says why.  Nothing if not open.
-   subroutine h5_close(self, error, complete)
+   subroutine h5_close(self, error, complete, interrupted)
       class(h5_writer_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: error
       logical, intent(in), optional :: complete
+      !> the signal that interrupted the run: root attribute `interrupted`
+      integer, intent(in), optional :: interrupted
       integer :: hdferr
       integer(ip) :: flag
       if (self%file < 0) return
@@ -539,6 +542,8 @@ contains
          if (complete) flag = 1_ip
       end if
       call put_int_attribute(self, self%file, 'complete', flag, error)
+      if (present(interrupted) .and. .not. allocated(error)) &
+         call put_int_attribute(self, self%file, 'interrupted', int(interrupted, ip), error)
       if (allocated(error)) then
          call h5_discard(self)
          return

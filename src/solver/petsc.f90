@@ -37,7 +37,8 @@ module vemcontact_solver_petsc
    implicit none
    private
 
-   public :: petsc_solver_t, petsc_initialize, petsc_finalize, petsc_abort, petsc_ranks, petsc_rank, mpi_launched
+   public :: petsc_solver_t, petsc_initialize, petsc_finalize, petsc_abort, petsc_ranks, petsc_rank, mpi_launched, &
+      petsc_sum
 
    !> The methods: CG + GAMG, CG + hypre BoomerAMG, MUMPS Cholesky (petsc_shim.c's kinds).
    integer, parameter, public :: petsc_gamg = 1, petsc_hypre = 2, petsc_mumps = 3
@@ -191,6 +192,16 @@ contains
    integer function petsc_ranks()
       petsc_ranks = int(vc_petsc_comm_size())
    end function petsc_ranks
+
+   !> x = the sum of x over the processes (MPI_Allreduce; nothing while PETSc is not
+   !> running or on one process).  `ok` is false when the reduction failed.
+   subroutine petsc_sum(x, ok)
+      real(wp), intent(inout) :: x(:)
+      logical, intent(out) :: ok
+      ok = .true.
+      if (size(x) == 0) return
+      ok = vc_petsc_sum(x, int(size(x), c_int64_t)) == st_ok
+   end subroutine petsc_sum
 
    !> This process's MPI rank (0 while PETSc is not running).
    integer function petsc_rank()

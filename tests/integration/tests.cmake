@@ -214,3 +214,29 @@ if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 LABELS deck
     PASS_REGULAR_EXPRESSION "SOLVER=CHOLMOD \\(\\*STATIC\\) runs on one process")
 endif()
+
+# SIGTERM and SIGINT at random points of a 20-step run keep the completed steps:
+# exit 143/130, JOB.h5 with complete = 0, interrupted = the signal and the steps of
+# a full run (docs/output-format.md, "Stopping a run"); the same under MPI
+add_test(NAME interrupt_serial
+  COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/interrupt_run.py" $<TARGET_FILE:vemcontact>
+          "${CMAKE_CURRENT_BINARY_DIR}/interrupt-serial" --trials 4)
+set_tests_properties(interrupt_serial PROPERTIES LABELS deck TIMEOUT 300)
+if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
+  add_test(NAME interrupt_mpi
+    COMMAND "${VC_PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/interrupt_run.py" $<TARGET_FILE:vemcontact>
+            "${CMAKE_CURRENT_BINARY_DIR}/interrupt-mpi" --trials 3
+            --mpi "${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2")
+  set_tests_properties(interrupt_mpi PROPERTIES
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2 TIMEOUT 300)
+else()
+  vc_skipped_test(interrupt_mpi "needs PETSc and an MPI launcher (mpiexec not found or PETSc not built)")
+endif()
+set_tests_properties(interrupt_mpi PROPERTIES LABELS deck)
+
+# the bad-input corpus and numeric fuzz mutants (bench/corpus_runner.py), the small
+# decks only: no signal, trap or backtrace, an exit status of the program (0..5)
+add_test(NAME corpus_quick
+  COMMAND "${VC_PYTHON}" "${PROJECT_SOURCE_DIR}/bench/corpus_runner.py" --exe $<TARGET_FILE:vemcontact>
+          --quick --mutants 6 --keep "${CMAKE_CURRENT_BINARY_DIR}/corpus-quick")
+set_tests_properties(corpus_quick PROPERTIES LABELS deck TIMEOUT 300)

@@ -25,6 +25,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..cli import entry
 from .core import ATOL_FACTOR, FIELDS, RTOL, Tolerances, compare, parse_fields, parse_steps
 from .h5file import CompareError, read_results
 
@@ -101,6 +102,7 @@ def format_report(report, tol: Tolerances, top: int) -> list:
     return lines
 
 
+@entry("vc-compare")
 def main(argv=None) -> int:
     doc = __doc__.split("\n\n")
     p = argparse.ArgumentParser(prog=PROG, description=doc[0],

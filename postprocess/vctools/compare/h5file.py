@@ -107,7 +107,9 @@ def _read_open(path, f) -> Results:
         raise CompareError(f"{path}: format_version {version} is not supported (this tool reads {FORMAT_VERSION})")
     # the completion marker (docs/output-format.md); files of older writers have none
     if "complete" in f.attrs and int(np.asarray(f.attrs["complete"]).reshape(-1)[0]) != 1:
-        raise CompareError(f"{path}: incomplete results: the run that wrote it stopped with an error "
+        signo = int(np.asarray(f.attrs.get("interrupted", 0)).reshape(-1)[0])
+        why = f"was interrupted by signal {signo}" if signo else "stopped with an error"
+        raise CompareError(f"{path}: incomplete results: the run that wrote it {why} "
                            "(root attribute complete = 0); see its log and rerun the job")
 
     mesh = {}

@@ -6,6 +6,7 @@ import sys
 import time
 from pathlib import Path
 
+from ..cli import entry
 from .errors import MeshError
 
 HERE = Path(__file__).resolve()
@@ -41,6 +42,7 @@ def _parser():
     return p
 
 
+@entry("vc-mesh")
 def main(argv=None):
     args = _parser().parse_args(argv)
     try:

@@ -6,6 +6,7 @@ import io
 import numpy as np
 
 from .errors import MeshError
+from .mesh import check_cells
 
 # element types: (formulation, plane) -> {nodes per cell: type}; VEM takes any polygon
 TYPES = {
@@ -39,7 +40,10 @@ def _id_lines(ids, per_line=16):
 
 
 def write_deck(m, path_or_file, header_lines=(), node_set_all="NALL"):
-    """Write the mesh; ids start at 1 in node/cell order.  Returns the text."""
+    """Write the mesh; ids start at 1 in node/cell order.  Returns the text.  A mesh
+    with a cell vemcontact would refuse is refused here (check_cells: MeshError),
+    never written."""
+    check_cells(m)
     out = io.StringIO()
     for line in header_lines:
         out.write(f"** {line}\n" if line else "**\n")

@@ -69,6 +69,57 @@ class Mesh:
         return cnt[inv] == 1
 
 
+def check_cells(m, limit=5):
+    """Refuse a mesh with a cell vemcontact would refuse: clockwise or of zero area, a
+    node used twice, or self-intersecting (MeshError naming the cells, their body and
+    a centroid).  A cell whose every corner turns left and whose turns add up to one
+    revolution is convex and simple; only the others are tested for self-intersection
+    (shapely, vectorized)."""
+    import shapely
+    n = m.ncell
+    if n == 0:
+        return
+    bad = {}
+    area = m.cell_areas()
+    scale = max(float(np.ptp(m.nodes[:, 0])), float(np.ptp(m.nodes[:, 1])), 1e-300)
+    # zero area relative to the cell's size: 1e-12 of the squared extent is round-off
+    cidx = m.cell_index()
+    for i in np.flatnonzero(~(area > 1e-24 * scale * scale)):
+        bad[int(i)] = "clockwise" if area[i] < 0 else "of zero area"
+    key = cidx.astype(np.int64) * (len(m.nodes) + 1) + m.conn
+    _, counts = np.unique(key, return_counts=True)
+    if (counts > 1).any():
+        for i in range(n):
+            c = m.cell(i)
+            if len(set(c.tolist())) < len(c):
+                bad.setdefault(i, "using a node twice")
+    xy = m.nodes[m.conn]
+    nx = xy[m.next_index()]
+    d = nx - xy
+    dn = d[m.next_index()]
+    cross = d[:, 0] * dn[:, 1] - d[:, 1] * dn[:, 0]
+    turn = np.arctan2(cross, (d * dn).sum(axis=1))
+    left = np.logical_and.reduceat(cross > 0, m.ptr[:-1])
+    total = np.add.reduceat(turn, m.ptr[:-1])
+    convex = left & (np.abs(total - 2 * np.pi) < 1e-6)
+    test = [i for i in np.flatnonzero(~convex) if int(i) not in bad]
+    if test:
+        rings = np.array([shapely.Polygon(m.nodes[m.cell(i)]) for i in test], dtype=object)
+        for i, ok in zip(test, shapely.is_valid(rings)):
+            if not ok:
+                bad[int(i)] = "self-intersecting"
+    if bad:
+        items = sorted(bad.items())
+        shown = []
+        for i, why in items[:limit]:
+            name = m.bodies[int(m.cell_body[i])][0] if m.bodies else "?"
+            c = m.nodes[m.cell(i)].mean(axis=0)
+            shown.append(f"cell {i + 1} of body {name!r} is {why} (near ({c[0]:.6g}, {c[1]:.6g}))")
+        more = f"; and {len(items) - limit} more" if len(items) > limit else ""
+        raise MeshError(f"the mesh has {len(items)} invalid cells, not written: " + "; ".join(shown) + more +
+                        ". Use more cells (or another seed) for this geometry")
+
+
 def add_side_nodes(m, arcs=()):
     """Make `m` second order: one new node per side, shared by the two cells on an
     interior side; sides on the two faces of a joint have different corner nodes, so

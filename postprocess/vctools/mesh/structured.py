@@ -115,6 +115,8 @@ def half_disc(name, center, radius, divisions, shape="quad", etype="CPE4", ratio
     and radially toward the arc.  Cells: nx*ny + nr*(2*nx + ny).
     """
     cx, cy = map(float, center)
+    if not float(radius) > 0:
+        raise MeshError(f"body {name!r}: the half disc needs radius > 0, got {radius}")
     Rr = float(radius)
     nx, ny, nr = map(int, divisions)
     if min(nx, ny, nr) < 1:
@@ -161,6 +163,8 @@ def half_disc(name, center, radius, divisions, shape="quad", etype="CPE4", ratio
 def cantilever(name, length=40.0, height=8.0, distortion=0.0, etype="CPE4"):
     """Example 1: two quads, the shared edge from (L/2 - d, 0) to (L/2 + d, b), 2d/b = distortion."""
     L, b = float(length), float(height)
+    if not (L > 0 and b > 0):
+        raise MeshError(f"body {name!r}: the cantilever needs length > 0 and height > 0, got {length} and {height}")
     d = 0.5 * float(distortion) * b
     if not abs(d) < 0.5 * L:
         raise MeshError(f"cantilever: 2d/b = {distortion} puts the shared edge outside the beam")

@@ -40,11 +40,13 @@ import os
 import sys
 import time
 
+from vctools.cli import entry
 from vctools.plot.results import ResultError
 from .document import write_document
 from .reproduce import ROOT, make_plan, run_job, write_jobs
 
 
+@entry("vc-paper")
 def main(argv=None) -> int:
     doc = __doc__.split("\n\n")
     p = argparse.ArgumentParser(prog="vc-paper", description=doc[0],

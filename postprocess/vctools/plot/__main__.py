@@ -36,17 +36,19 @@ import sys
 
 import numpy as np
 
+from ..cli import entry, positive_int
 from .results import ResultError, check_complete, contact_file, read_contact_points, read_vtu, step_files, step_label
 from .contour import field_unit, plot, unit_factors
 
 
+@entry("vc-plot")
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="vc-plot", description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter,
                                 epilog=__doc__.split("\n\n", 1)[1])
     p.add_argument("result", help=".vtu file or .pvd collection")
     p.add_argument("--field", action="append", help="field to draw (repeatable; default U:x U:y S1 S3 MISES)")
-    p.add_argument("--step", type=int, default=0, help="step of a .pvd, 1-based (default: last)")
+    p.add_argument("--step", type=positive_int, default=None, help="step of a .pvd, 1-based (default: last)")
     p.add_argument("--deformed", default=None, help="draw on the deformed shape: auto or a scale factor")
     p.add_argument("--units", default="", metavar="LENGTH[,STRESS]",
                    help="units to show, converted from --model-units: lengths and displacements in the first, "
@@ -69,7 +71,7 @@ def main(argv=None) -> int:
         files = step_files(a.result)
         if not a.incomplete:
             check_complete(a.result)
-        if a.step < 0 or a.step > len(files):
+        if a.step is not None and a.step > len(files):
             raise ResultError(f"{a.result}: has {len(files)} steps, no step {a.step}")
         vtu = files[a.step - 1] if a.step else files[-1]
         res = read_vtu(vtu)

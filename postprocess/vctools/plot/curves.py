@@ -41,6 +41,7 @@ import sys
 
 import numpy as np
 
+from vctools.cli import entry, positive_int
 from vctools.paper.runs import ResultError, read_contact, read_h5, read_log
 
 #: the paper's Table 1: peak normal contact traction per penalty iteration
@@ -349,6 +350,7 @@ def _table(rows: list[dict], keys: list[str]) -> str:
     return "\n".join(lines) + "\n"
 
 
+@entry("vc-curves")
 def main(argv=None) -> int:
     doc = __doc__.split("\n\n")
     p = argparse.ArgumentParser(prog="vc-curves", description=doc[0],
@@ -365,8 +367,8 @@ def main(argv=None) -> int:
                         help="CPRESS, COPEN and CSLIP along a contact pair, runs overlaid")
     common(sp, "pressure.png")
     sp.add_argument("--hertz", metavar="P,R,E1,NU1,E2,NU2", help="overlay the plane-strain Hertz pressure")
-    sp.add_argument("--pair", type=int, default=1, help="contact pair (default 1)")
-    sp.add_argument("--step", type=int, default=0, help="step, 1-based (default: last)")
+    sp.add_argument("--pair", type=positive_int, default=1, help="contact pair (default 1)")
+    sp.add_argument("--step", type=positive_int, default=0, help="step, 1-based (default: last)")
     sp.add_argument("--along", choices=["auto", "x", "y", "s"], default="auto",
                     help="coordinate along the pair (default auto: x, y or the distance s)")
     sp.add_argument("--label", action="append", help="legend label of each run, in order (repeatable)")
@@ -390,7 +392,7 @@ def main(argv=None) -> int:
     sp = sub.add_parser("iterations", help="peak pressure per active-set iteration (Table 1)")
     common(sp, "iterations.png")
     sp.add_argument("--label", action="append", help="label of each run, in order (default: K from the log)")
-    sp.add_argument("--step", type=int, default=0, help="step with contact iterations, 1-based (default: last)")
+    sp.add_argument("--step", type=positive_int, default=0, help="step with contact iterations, 1-based (default: last)")
     sp.add_argument("--paper-table1", action="store_true", help="the paper's Table 1 beside ours (matched by K)")
     sp.add_argument("--markdown", default=None, metavar="FILE", help="also write the Markdown table to FILE")
     sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]")

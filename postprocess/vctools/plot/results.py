@@ -57,10 +57,12 @@ def check_complete(path: str) -> None:
     try:
         with h5py.File(h5, "r") as f:
             complete = int(np.asarray(f.attrs.get("complete", 1)).reshape(-1)[0])
+            signo = int(np.asarray(f.attrs.get("interrupted", 0)).reshape(-1)[0])
     except (OSError, KeyError, ValueError) as exc:
         raise ResultError(f"{path}: {h5} cannot be read ({' '.join(str(exc).split())}); {hint}") from None
     if complete != 1:
-        raise ResultError(f"{path}: incomplete results: the run of {job} stopped with an error "
+        why = f"was interrupted by signal {signo}" if signo else "stopped with an error"
+        raise ResultError(f"{path}: incomplete results: the run of {job} {why} "
                           f"({h5} has complete = 0); {hint}")
 
 
