@@ -521,7 +521,8 @@ contains
    !> solve: S dlam = -g, S = A M^-1 A^T the condensed compliance of the entries at
    !> the current factor M (the elastic stiffness and the springs), A the rows n.A(xi)
    !> of the gaps.  Solved by conjugate gradients preconditioned with the springs k
-   !> (each product by S is one solve with the factor), whose first iterate is the
+   !> (each product by S is one solve with the factor, or with finite sliding one
+   !> GMRES solve of the Newton tangent: compliance_apply), whose first iterate is the
    !> plain Uzawa update -k g at its best length.  Uzawa alone divides the error of a
    !> pressure mode by 1 + k c, c its compliance, which is slow for the modes that
    !> the stiffer body carries (c of the stiff body, k of the soft one: 1.35 per
