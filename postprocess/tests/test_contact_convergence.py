@@ -188,7 +188,7 @@ def test_nonconvergence_help_names_only_what_the_run_can_change(exe, tmp_path):
     SLIDING (its pairing is fixed already) but a stiffer augmentation; a LINEAR
     NODE TO SURFACE run with finite sliding at K h/E = 1e8 is told that its pairing
     can be fixed and that HARD holds where its penalty does not (the paper's interface
-    decks take 12-37 iterations or none at 1e8, 7-8 with HARD)."""
+    decks take 12-37 iterations or none at 1e8, 6-7 with HARD)."""
     deck = tmp_path / "sts.inp"
     _hard_blocks(deck, 1e6, "SURFACE TO SURFACE", 5, 7)
     deck.write_text(deck.read_text().replace("*STEP\n", "*CONTACT CONTROLS, MAXIT=1\n*STEP\n", 1))

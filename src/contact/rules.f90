@@ -64,7 +64,7 @@ module vemcontact_contact_rules
    !> K h/E of a LINEAR pair with finite sliding above which the contact iteration
    !> may need more than 10 iterations: on the paper's seven interface decks (free
    !> sides, the blocks slide) 4-6 iterations up to 1e5, 5-12 at 1e6, 6-17 at 1e7,
-   !> 12-37 or none at 1e8, against 7-8 with HARD (docs/contact-robustness.md, "Stiff
+   !> 12-37 or none at 1e8, against 6-7 with HARD (docs/contact-robustness.md, "Stiff
    !> penalties with finite sliding"): the help of a run that did not converge
    !> recommends HARD above it.
    real(wp), parameter, public :: sliding_penalty_limit = 1.0e5_wp
@@ -245,8 +245,8 @@ contains
          write (b, '(es9.2)') ratio
          s = s//new_line('a')//'  = help: the penalty slope is K h/E = '//trim(adjustl(b))//'; with finite '// &
              'sliding the iteration takes at most about 10 iterations up to K h/E = 1e5 and more '// &
-             'beyond: lower K, or use PRESSURE-OVERCLOSURE=HARD (no overclosure, 7-8 iterations '// &
-             'on such interfaces)'
+             'beyond: lower K, or use PRESSURE-OVERCLOSURE=HARD (no overclosure; 6-7 iterations '// &
+             'on interfaces that take 12-37 at K h/E = 1e8)'
       end if
       if (hard) s = s//new_line('a')//'  = help: PRESSURE-OVERCLOSURE=HARD updates its multipliers at '// &
                     'every iteration; a larger STIFFNESS SCALE FACTOR on *CONTACT CONTROLS makes each '// &
