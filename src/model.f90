@@ -228,6 +228,9 @@ module vemcontact_model
       !> VEM stabilisation factor tau of each element (1 = the default of the
       !> element kernel); models built without it (unallocated) use 1 everywhere
       real(wp), allocatable :: elem_stab(:)
+      !> reduced integration (CPE8R/CPS8R: 2 x 2 Gauss on the 8-node quad); models
+      !> built without it (unallocated) use full integration everywhere
+      logical, allocatable :: elem_reduced(:)
       type(source_loc_t), allocatable :: elem_loc(:)
       ! sets, materials, sections, steps
       type(named_set_t), allocatable :: nsets(:)

@@ -97,7 +97,10 @@ contains
          model%elem_plane = model%elem_plane(1:n)
          model%elem_loc = model%elem_loc(1:n)
       end if
-      allocate (model%elem_form(n), model%elem_mat(n), model%elem_thick(n), model%elem_stab(n))
+      allocate (model%elem_form(n), model%elem_mat(n), model%elem_thick(n), model%elem_stab(n), &
+                model%elem_reduced(n))
+      model%elem_reduced = .false.
+      if (p%reduced%n > 0) model%elem_reduced(p%reduced%a(1:p%reduced%n)) = .true.
       model%elem_form = 0
       model%elem_mat = 0
       model%elem_thick = 1.0_wp

@@ -8,7 +8,7 @@ module vemcontact_deck_loads
    use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure, &
                                dload_hydrostatic, procedure_static, procedure_geostatic, element_order
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, here, &
-                                    err_here, err_at, warn_here, field, get_int, get_real, push_item, push_dof, &
+                                    err_here, refuse_here, err_at, warn_here, field, get_int, get_real, push_item, push_dof, &
                                     push_dload, node_index, elem_index, get_set, set_suggestion, &
                                     ref_kind, ref_id, ref_name, loc_str, tidy_items
    use vemcontact_deck_lines, only: advance
@@ -425,8 +425,9 @@ contains
       end if
       call get_param(kw, 'NLGEOM', val, found)
       if (found .and. val /= 'NO') then
-         call err_here(p, 'NLGEOM (geometric nonlinearity) is not supported: vemcontact is a '// &
-                       'small-strain code', 'remove NLGEOM or write NLGEOM=NO')
+         call refuse_here(p, 'NLGEOM (geometric nonlinearity)', 'vemcontact is a small-strain code: '// &
+                          'remove NLGEOM or write NLGEOM=NO to run the step linearly')
+         return
       end if
       p%in_step = .true.
       p%procedure_seen = .false.

@@ -4,10 +4,11 @@
 !> next line it can make sense of, so one run reports all problems of a deck.
 module vemcontact_deck_parser
    use vemcontact_model, only: model_t, output_node, output_element, output_contact
-   use vemcontact_deck_state, only: deck_parser_t, err_here
+   use vemcontact_deck_state, only: deck_parser_t, err_here, refuse_here
    use vemcontact_deck_source, only: line_keyword, line_data, line_eof
    use vemcontact_deck_fields, only: keyword_line_t, parse_keyword_line
    use vemcontact_deck_registry, only: keywords, find_keyword, keyword_suggestion, is_calculix_keyword, &
+                                       out_of_scope_feature, &
                                        known_keyword_list, ctx_model, ctx_step, &
                                        kw_heading, kw_node, kw_element, kw_nset, kw_elset, &
                                        kw_material, kw_elastic, kw_density, kw_solid_section, &
@@ -42,7 +43,7 @@ contains
       logical :: ok, first_data
       first_data = .true.
       call advance(p)
-      do while (p%src%kind /= line_eof)
+      do while (p%src%kind /= line_eof .and. .not. p%refused)
          if (p%src%kind == line_data) then
             ! only possible before the first keyword: handlers consume their data lines
             if (first_data) call err_here(p, 'data line before the first keyword', &
@@ -55,6 +56,10 @@ contains
          call parse_keyword_line(p%src%text(1:p%src%length), kw)
          id = find_keyword(kw%name)
          if (id == 0) then
+            if (len(out_of_scope_feature(kw%name)) > 0) then
+               call refuse_here(p, out_of_scope_feature(kw%name))
+               exit
+            end if
             if (len(kw%name) == 0) then
                call err_here(p, 'missing keyword name after *', 'known keywords are '//known_keyword_list())
             else if (is_calculix_keyword(kw%name)) then

@@ -154,7 +154,26 @@ contains
       call extra_lines(p, '*DENSITY')
    end subroutine read_density
 
-   !> *SOLID SECTION, ELSET=, MATERIAL= [, FORMULATION=VEM|FEM] [, STABILIZATION=tau];
+   !> OFFSET= of *SOLID SECTION (CalculiX: the offset of a shell or beam section's
+   !> reference surface, in units of the thickness): zero changes nothing for a
+   !> plane element and is accepted; any other value is out of scope.
+   subroutine check_offset(p, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(keyword_line_t), intent(in) :: kw
+      character(len=:), allocatable :: text
+      logical :: found
+      real(wp) :: offset
+      integer :: stat
+      call get_param(kw, 'OFFSET', text, found)
+      if (.not. found) return
+      ! the registry has checked that it is a finite number
+      call parse_real(squeeze(text), offset, stat)
+      if (stat == num_ok .and. abs(offset) > 0.0_wp) &
+         call err_here(p, '*SOLID SECTION, OFFSET='//text//' is not supported: vemcontact accepts '// &
+                       'OFFSET=0 only (plane elements have no offset reference surface)')
+   end subroutine check_offset
+
+   !> *SOLID SECTION, ELSET=, MATERIAL= [, FORMULATION=VEM|FEM] [, STABILIZATION=tau] [, OFFSET=0];
    !> data line: [thickness].  STABILIZATION (vemcontact) scales the VEM stabilisation;
    !> its use on FEM elements is refused once formulations are known (finish).
    subroutine read_section(p, model, kw)
@@ -171,6 +190,7 @@ contains
       call get_param(kw, 'MATERIAL', mat, found)
       call get_param(kw, 'FORMULATION', form, found)
       call get_param(kw, 'STABILIZATION', stab, has_stab)
+      call check_offset(p, kw)
       tau = 1.0_wp
       if (has_stab) then
          ! the registry has checked that it is a finite number

@@ -11,7 +11,7 @@ module vemcontact_deck_registry
 
    public :: keyword_spec_t, param_spec_t, keywords, params
    public :: find_keyword, find_param, keyword_suggestion, param_suggestion, known_keyword_list
-   public :: is_calculix_keyword, allowed_value, param_list
+   public :: is_calculix_keyword, allowed_value, param_list, out_of_scope_feature
 
    !> Keyword ids (index into `keywords`).
    integer, parameter, public :: kw_heading = 1, kw_include = 2, kw_node = 3, kw_element = 4, &
@@ -90,7 +90,7 @@ module vemcontact_deck_registry
                                       keyword_spec_t('CONTACT OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('OUTPUT', ctx_step, data_none)]
 
-   type(param_spec_t), parameter :: params(110) = [ &
+   type(param_spec_t), parameter :: params(111) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -106,6 +106,7 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_solid_section, 'FORMULATION', par_value, .false., val_name, 'VEM FEM'), &
                                     ! vemcontact: VEM stabilisation factor tau; positivity checked by the handler
                                     param_spec_t(kw_solid_section, 'STABILIZATION', par_value, .false., val_real, ''), &
+                                    param_spec_t(kw_solid_section, 'OFFSET', par_value, .false., val_real, ''), &
                                     param_spec_t(kw_boundary, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_cload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_dload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
@@ -218,7 +219,46 @@ module vemcontact_deck_registry
                                    'SPECIFICHEAT', &
                                    'TEMPERATURE', 'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
 
+   !> CalculiX/Abaqus keywords of what vemcontact does not model at all (another
+   !> analysis, another kind of element or material law): the deck is refused at
+   !> the first of them with one message (out_of_scope_feature).  Squeezed names,
+   !> then what the message calls the feature.
+   character(len=28), parameter :: scope_names(30) = [character(len=28) :: &
+                                   'FREQUENCY', 'DYNAMIC', 'MODALDYNAMIC', 'STEADYSTATEDYNAMICS', &
+                                   'HEATTRANSFER', 'COUPLEDTEMPERATURE-DISPLACEMENT', 'BUCKLE', 'VISCO', &
+                                   'UNCOUPLEDTEMPERATURE-DISPLACEMENT', 'COMPLEXFREQUENCY', 'ELECTROMAGNETICS', &
+                                   'SENSITIVITY', 'GREEN', 'RIGIDBODY', 'PLASTIC', 'CREEP', 'HYPERELASTIC', &
+                                   'DEFORMATIONPLASTICITY', 'HYPERFOAM', 'USERMATERIAL', 'BEAMSECTION', &
+                                   'SHELLSECTION', 'MEMBRANESECTION', 'SPRING', 'DASHPOT', 'GAP', 'MASS', &
+                                   'CONDUCTIVITY', 'SPECIFICHEAT', 'FLUIDSECTION']
+   character(len=44), parameter :: scope_what(30) = [character(len=44) :: &
+                                   'a frequency step (*FREQUENCY)', 'a dynamic step (*DYNAMIC)', &
+                                   'a modal dynamic step (*MODAL DYNAMIC)', &
+                                   'a steady-state dynamics step', 'heat transfer (*HEAT TRANSFER)', &
+                                   'coupled temperature-displacement analysis', 'buckling (*BUCKLE)', &
+                                   'viscous creep steps (*VISCO)', 'temperature-displacement analysis', &
+                                   'complex frequency analysis', 'electromagnetics', 'sensitivity analysis', &
+                                   'Green function analysis', 'a rigid body (*RIGID BODY)', &
+                                   'plasticity (*PLASTIC)', 'creep (*CREEP)', 'hyperelasticity', &
+                                   'deformation plasticity', 'hyperfoam materials', 'a user material', &
+                                   'beam sections (*BEAM SECTION)', 'shell sections (*SHELL SECTION)', &
+                                   'membrane sections', 'spring elements (*SPRING)', 'dashpot elements', &
+                                   'gap elements (*GAP)', 'point masses (*MASS)', 'heat conduction (*CONDUCTIVITY)', &
+                                   'heat capacity (*SPECIFIC HEAT)', 'fluid sections']
+
 contains
+
+   !> What out-of-scope feature the keyword `name` (squeezed, upper case) stands
+   !> for, '' when it is not one of them.
+   pure function out_of_scope_feature(name) result(what)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: what
+      integer :: k
+      what = ''
+      do k = 1, size(scope_names)
+         if (trim(scope_names(k)) == name) what = trim(scope_what(k))
+      end do
+   end function out_of_scope_feature
 
    !> Id of the keyword with squeezed upper-case name `name` (e.g. 'SOLIDSECTION'), 0 if unknown.
    pure function find_keyword(name) result(id)

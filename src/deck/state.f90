@@ -18,7 +18,7 @@ module vemcontact_deck_state
    private
 
    public :: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, pair_ref_t
-   public :: here, err_here, err_at, warn_here, loc_str, field, get_int, get_id, get_real
+   public :: here, err_here, refuse_here, err_at, warn_here, loc_str, field, get_int, get_id, get_real
    public :: push_item, push_dof, push_dload, node_index, elem_index
    public :: get_set, set_suggestion, ref_kind, tidy_items
 
@@ -68,12 +68,16 @@ module vemcontact_deck_state
       integer :: nnset = 0, nelset = 0, nmat = 0, nsec = 0, nstep = 0
       integer :: nsurf = 0, ninter = 0, npair = 0
       type(item_list_t), allocatable :: nset_items(:), elset_items(:), sec_items(:)
+      type(item_list_t) :: reduced            !< elements of the reduced-integration types (CPE8R/CPS8R)
       integer :: cur_mat = 0                !< material that *ELASTIC and *DENSITY apply to
       integer :: cur_inter = 0              !< interaction that *SURFACE BEHAVIOR applies to, -1 = dropped
       logical :: in_step = .false.
       logical :: procedure_seen = .false.   !< *STATIC or *GEOSTATIC in the current step
       logical :: section_errors = .false.   !< suppresses "no section" noise after a bad *SOLID SECTION
       logical :: element_errors = .false.   !< suppresses "no section" noise after a bad *ELEMENT
+      !> the deck uses a feature outside vemcontact's scope (refuse_here): reading stops
+      !> there, so that its one message is not followed by the errors it would cause
+      logical :: refused = .false.
       type(source_loc_t) :: step_loc
       type(step_acc_t) :: init, cur
       type(grav_ref_t), allocatable :: grav(:)
@@ -101,6 +105,23 @@ contains
       character(len=*), intent(in), optional :: help
       call p%diag%report(p%src%path(), p%src%line, message, p%src%text(1:p%src%length), help)
    end subroutine err_here
+
+   !> Refuse the deck at the current line: `feature` (e.g. "axisymmetric element
+   !> type CAX8") is outside vemcontact's scope.  One message; the parser stops
+   !> reading, since the rest of the deck depends on what it cannot model.
+   subroutine refuse_here(p, feature, help)
+      type(deck_parser_t), intent(inout) :: p
+      character(len=*), intent(in) :: feature
+      character(len=*), intent(in), optional :: help
+      if (present(help)) then
+         call err_here(p, feature//' is outside vemcontact''s scope (linear static plane stress and plane '// &
+                       'strain); the deck is not read further', help)
+      else
+         call err_here(p, feature//' is outside vemcontact''s scope (linear static plane stress and plane '// &
+                       'strain); the deck is not read further', 'docs/deck-reference.md lists what is out of scope')
+      end if
+      p%refused = .true.
+   end subroutine refuse_here
 
    !> Record a warning at the current line: "file:line: warning: message".
    subroutine warn_here(p, message)

@@ -52,7 +52,7 @@ contains
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
          end associate
          call element_stiffness(model%elem_form(e), xy(:, :n), d, model%elem_thick(e), ke(:2*n, :2*n), &
-                                work, info, stab(model, e), element_order(model%elem_type(e)))
+                                work, info, stab(model, e), element_order(model%elem_type(e)), reduced(model, e))
          if (info /= 0) then
             nerr = nerr + 1
             write (buf, '(i0)') model%elem_id(e)
@@ -150,6 +150,14 @@ contains
       stab = 1.0_wp
       if (allocated(model%elem_stab)) stab = model%elem_stab(e)
    end function stab
+
+   !> Whether the element has reduced integration (false when the model has no such flags).
+   pure logical function reduced(model, e)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: e
+      reduced = .false.
+      if (allocated(model%elem_reduced)) reduced = model%elem_reduced(e)
+   end function reduced
 
    !> Consistent nodal forces per unit thickness, fs(:, i) for the side's nodes
    !> xs(:, 1) (start corner), xs(:, 2) (end corner), xs(:, 3) (middle node), of
@@ -301,7 +309,7 @@ contains
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
             call element_stress(model%elem_form(e), xy(:, :n), d, ue(:2*n), work, sig, &
                                 element_order(model%elem_type(e)), model%elem_thick(e), stab(model, e), body(:, e), &
-                                sn(:, :n))
+                                sn(:, :n), reduced(model, e))
             s_elem(:, e) = [sig(1), sig(2), out_of_plane_stress(mat%poisson, model%elem_plane(e), sig(1), sig(2)), sig(3)]
             if (present(s_at)) then
                do i = 1, n
