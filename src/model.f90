@@ -11,6 +11,7 @@ module vemcontact_model
    public :: dof_value_t, dload_t, string_t, source_loc_t
    public :: surface_t, interaction_t, contact_pair_t, contact_controls_t, output_request_t
    public :: find_set, location_string, output_requested, element_order, element_side
+   public :: equation_t
 
    !> Element topology
    integer, parameter, public :: etype_polygon = 1 !< VPE/VPS: any number of nodes
@@ -107,6 +108,15 @@ module vemcontact_model
    end type dload_t
 
    !> *SURFACE: element sides (elem(k), side(k)) or nodes.
+   !> A linear multi-point constraint (*EQUATION): sum_i coef(i) u(node(i), dof(i)) = 0;
+   !> the first term's dof is dependent (eliminated), as in CalculiX.
+   type :: equation_t
+      integer(ip), allocatable :: node(:)     !< internal node index of each term
+      integer, allocatable :: dof(:)          !< 1 = x, 2 = y
+      real(wp), allocatable :: coef(:)        !< coef(1) /= 0
+      type(source_loc_t) :: loc               !< the line with the number of terms
+   end type equation_t
+
    type :: surface_t
       character(len=:), allocatable :: name   !< upper case
       integer :: kind = 0                     !< surface_element or surface_node
@@ -248,6 +258,8 @@ module vemcontact_model
       type(interaction_t), allocatable :: interactions(:)
       type(contact_pair_t), allocatable :: pairs(:)
       type(contact_controls_t) :: controls
+      !> linear constraints (*EQUATION), eliminated in the linear system; unallocated = none
+      type(equation_t), allocatable :: equations(:)
       !> the deck has output requests: only the fields they select are written; without
       !> any, every field is written (output_requested)
       logical :: has_output_requests = .false.

@@ -17,13 +17,14 @@ module vemcontact_deck_parser
                                        kw_contact_pair, kw_contact_controls, kw_geostatic, kw_dsload, &
                                        kw_node_file, kw_el_file, kw_contact_file, kw_node_print, kw_el_print, &
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
-                                       kw_output
+                                       kw_output, kw_equation
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
    use vemcontact_deck_loads, only: read_heading, read_boundary, read_cload, read_dload, start_step, &
                                     read_procedure, end_step
    use vemcontact_deck_surface_loads, only: read_dsload
+   use vemcontact_deck_equations, only: read_equation
    use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
                                       read_contact_pair, read_controls
@@ -140,6 +141,8 @@ contains
                                      id == kw_contact_print)
          case (kw_output)
             call read_output(p, model, kw)
+         case (kw_equation)
+            call read_equation(p, model)
          case (kw_end_step)
             call end_step(p, model)
             call no_data(p, '*END STEP')

@@ -298,6 +298,7 @@ contains
          call say_estimate(est)
          ! reactions: K u - f_ext at the constrained dofs, with the loads in force
          call assemble_loads(model, st%force, st%dload, f)
+         call sys%reduce_loads(f)   ! K u is that of the system with *EQUATION eliminated
          call reaction_forces(ku, f, st%fixed, extra%rf)
          rf_sets = constrained_sets(model, st%fixed)
          allocate (set_rf(2, size(rf_sets)), set_names(size(rf_sets)))
