@@ -10,6 +10,7 @@ module vemcontact_deck_finish
    use vemcontact_deck_loads, only: end_step, acc_to_step
    use vemcontact_deck_contact, only: finish_contact
    use vemcontact_deck_equations, only: check_equations
+   use vemcontact_deck_assembly, only: check_parts
    use vemcontact_deck_idmap, only: sort_unique
    use vemcontact_deck_fields, only: int_str, edit_distance
    implicit none
@@ -51,6 +52,7 @@ contains
       model%initial%name = 'initial'
       if (p%nstep == 0) allocate (model%steps(0))
       call check_equations(p, model)
+      call check_parts(p)
       ! after other errors (a failed *INCLUDE, a skipped block) these would be noise
       if (p%diag%count > 0) return
       if (model%nnode == 0) call p%diag%report(path, 0, 'the deck defines no nodes (*NODE)')

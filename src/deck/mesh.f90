@@ -59,7 +59,7 @@ contains
                           ': vemcontact is two-dimensional, a third coordinate must be 0')
             cycle
          end if
-         call add_node(p, model, id, x, y)
+         call add_node(p, model, id + p%node_offset, x, y)
          if (kset > 0) call push_item(p%nset_items(kset), model%nnode)
       end do
    end subroutine read_nodes
@@ -248,7 +248,7 @@ contains
                ok = .false.
                exit
             end if
-            model%elem_conn(p%nconn + k) = nid
+            model%elem_conn(p%nconn + k) = nid + p%node_offset
          end do
          if (.not. ok) then
             p%element_errors = .true.
@@ -257,7 +257,7 @@ contains
          p%nconn = p%nconn + nnod
          model%nelem = model%nelem + 1
          associate (e => model%nelem)
-            model%elem_id(e) = id
+            model%elem_id(e) = id + p%elem_offset
             model%elem_ptr(e + 1) = p%nconn + 1
             model%elem_type(e) = etype
             model%elem_plane(e) = plane

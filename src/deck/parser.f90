@@ -17,7 +17,8 @@ module vemcontact_deck_parser
                                        kw_contact_pair, kw_contact_controls, kw_geostatic, kw_dsload, &
                                        kw_node_file, kw_el_file, kw_contact_file, kw_node_print, kw_el_print, &
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
-                                       kw_output, kw_equation
+                                       kw_output, kw_equation, kw_part, kw_end_part, kw_assembly, &
+                                       kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
@@ -25,6 +26,8 @@ module vemcontact_deck_parser
                                     read_procedure, end_step
    use vemcontact_deck_surface_loads, only: read_dsload
    use vemcontact_deck_equations, only: read_equation
+   use vemcontact_deck_assembly, only: read_part, end_part, read_assembly, end_assembly, read_instance, &
+                                       end_instance, read_noop, instance_offsets, qualify_in_part
    use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
                                       read_contact_pair, read_controls
@@ -85,6 +88,14 @@ contains
             call skip_data(p)
             cycle
          end if
+         if (p%cur_part > 0) call qualify_set_names(p, kw)
+         if (id == kw_nset .or. id == kw_elset) then
+            call instance_offsets(p, kw, ok)
+            if (.not. ok) then
+               call skip_data(p)
+               cycle
+            end if
+         end if
          select case (id)
          case (kw_heading)
             call read_heading(p, model)
@@ -94,8 +105,10 @@ contains
             call read_elements(p, model, kw)
          case (kw_nset)
             call read_set(p, model, kw, .true.)
+            call restore_offsets(p)
          case (kw_elset)
             call read_set(p, model, kw, .false.)
+            call restore_offsets(p)
          case (kw_material)
             call read_material(p, model, kw)
             call no_data(p, '*MATERIAL')
@@ -143,6 +156,27 @@ contains
             call read_output(p, model, kw)
          case (kw_equation)
             call read_equation(p, model)
+         case (kw_part)
+            call read_part(p, model, kw)
+            call no_data(p, '*PART')
+         case (kw_end_part)
+            call end_part(p, model)
+            call no_data(p, '*END PART')
+         case (kw_assembly)
+            call read_assembly(p)
+            call no_data(p, '*ASSEMBLY')
+         case (kw_end_assembly)
+            call end_assembly(p)
+            call no_data(p, '*END ASSEMBLY')
+         case (kw_instance)
+            call read_instance(p, model, kw)
+         case (kw_end_instance)
+            call end_instance(p)
+            call no_data(p, '*END INSTANCE')
+         case (kw_preprint)
+            call read_noop(p, kw, 'PREPRINT')
+         case (kw_restart)
+            call read_noop(p, kw, 'RESTART')
          case (kw_end_step)
             call end_step(p, model)
             call no_data(p, '*END STEP')
@@ -152,6 +186,30 @@ contains
          end select
       end do
    end subroutine parse_lines
+
+   !> Inside a *PART, the set names of NSET= and ELSET= are the part's own:
+   !> "part.name" until its *INSTANCE renames them.
+   subroutine qualify_set_names(p, kw)
+      type(deck_parser_t), intent(in) :: p
+      type(keyword_line_t), intent(inout) :: kw
+      integer :: k
+      do k = 1, kw%nparam
+         if (kw%pname(k)%s == 'NSET' .or. kw%pname(k)%s == 'ELSET') &
+            kw%pvalue(k)%s = qualify_in_part(p, kw%pvalue(k)%s)
+      end do
+   end subroutine qualify_set_names
+
+   !> After a set keyword: the offsets of the part being read (those of an
+   !> INSTANCE= parameter held for that keyword only).
+   subroutine restore_offsets(p)
+      type(deck_parser_t), intent(inout) :: p
+      p%node_offset = 0
+      p%elem_offset = 0
+      if (p%cur_part > 0) then
+         p%node_offset = p%parts(p%cur_part)%node_offset
+         p%elem_offset = p%parts(p%cur_part)%elem_offset
+      end if
+   end subroutine restore_offsets
 
    !> Model-data keywords may not appear inside a step, step keywords only there.
    subroutine check_context(p, id, ok)

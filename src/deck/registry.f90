@@ -23,7 +23,9 @@ module vemcontact_deck_registry
                                  kw_geostatic = 22, kw_dsload = 23, kw_node_file = 24, kw_el_file = 25, &
                                  kw_contact_file = 26, kw_node_print = 27, kw_el_print = 28, &
                                  kw_contact_print = 29, kw_node_output = 30, kw_element_output = 31, &
-                                 kw_contact_output = 32, kw_output = 33, kw_equation = 34
+                                 kw_contact_output = 32, kw_output = 33, kw_equation = 34, &
+                                 kw_part = 35, kw_end_part = 36, kw_assembly = 37, kw_end_assembly = 38, &
+                                 kw_instance = 39, kw_end_instance = 40, kw_preprint = 41, kw_restart = 42
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -55,7 +57,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(34) = [ &
+   type(keyword_spec_t), parameter :: keywords(42) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -89,9 +91,17 @@ module vemcontact_deck_registry
                                       keyword_spec_t('ELEMENT OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('CONTACT OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('OUTPUT', ctx_step, data_none), &
-                                      keyword_spec_t('EQUATION', ctx_model, data_required)]
+                                      keyword_spec_t('EQUATION', ctx_model, data_required), &
+                                      keyword_spec_t('PART', ctx_model, data_none), &
+                                      keyword_spec_t('END PART', ctx_model, data_none), &
+                                      keyword_spec_t('ASSEMBLY', ctx_model, data_none), &
+                                      keyword_spec_t('END ASSEMBLY', ctx_model, data_none), &
+                                      keyword_spec_t('INSTANCE', ctx_model, data_optional), &
+                                      keyword_spec_t('END INSTANCE', ctx_model, data_none), &
+                                      keyword_spec_t('PREPRINT', ctx_model, data_none), &
+                                      keyword_spec_t('RESTART', ctx_any, data_none)]
 
-   type(param_spec_t), parameter :: params(111) = [ &
+   type(param_spec_t), parameter :: params(132) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -208,15 +218,40 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_output, 'FREQUENCYF', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_output, 'TIME POINTS', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_output, 'NUMBER INTERVAL', par_value, .false., val_int, ''), &
-                                    param_spec_t(kw_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL')]
+                                    param_spec_t(kw_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL'), &
+                                    ! Abaqus/CAE structure (src/deck/assembly.f90)
+                                    param_spec_t(kw_part, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_assembly, 'NAME', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_instance, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_instance, 'PART', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_nset, 'INSTANCE', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_elset, 'INSTANCE', par_value, .false., val_name, ''), &
+                                    ! accepted and ignored, with a note in the log
+                                    param_spec_t(kw_preprint, 'ECHO', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'MODEL', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'HISTORY', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'CONTACT', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'MASSPROP', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'PARSUBSTITUTION', par_value, .false., val_name, &
+                                                 'YES NO'), &
+                                    param_spec_t(kw_restart, 'WRITE', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'READ', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'NUMBER INTERVAL', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'OVERLAY', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'TIME MARKS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'STEP', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'INC', par_value, .false., val_name, ''), &
+                                    ! Abaqus/CAE writes it on every *ELEMENT OUTPUT: local directions (none in 2D)
+                                    param_spec_t(kw_element_output, 'DIRECTIONS', par_value, .false., val_name, 'YES NO')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(28) = [character(len=24) :: &
+   character(len=24), parameter :: calculix_only(27) = [character(len=24) :: &
                                    'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
                                    'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', &
                                    'VISCO', 'EXPANSION', 'FILM', 'FREQUENCY', &
                                    'FRICTION', 'HEATTRANSFER', 'INITIALCONDITIONS', 'KINEMATIC', &
-                                   'MPC', 'ORIENTATION', 'PLASTIC', 'RESTART', 'SHELLSECTION', &
+                                   'MPC', 'ORIENTATION', 'PLASTIC', 'SHELLSECTION', &
                                    'SPECIFICHEAT', &
                                    'TEMPERATURE', 'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
 
