@@ -74,6 +74,9 @@ module vemcontact_model
       real(wp) :: density = 0.0_wp
       logical :: has_elastic = .false.
       logical :: has_density = .false.
+      !> *EXPANSION: isotropic thermal expansion coefficient (thermal strain alpha (T - T0))
+      real(wp) :: expansion = 0.0_wp
+      logical :: has_expansion = .false.
       type(source_loc_t) :: loc
    end type material_t
 
@@ -207,6 +210,10 @@ module vemcontact_model
       type(dof_value_t), allocatable :: boundary(:)
       type(dof_value_t), allocatable :: cload(:)
       type(dload_t), allocatable :: dload(:)
+      !> nodal temperatures: *TEMPERATURE of a step (dof unused), or in `model%initial`
+      !> *INITIAL CONDITIONS, TYPE=TEMPERATURE (the reference temperature T0)
+      type(dof_value_t), allocatable :: temperature(:)
+      logical :: temperature_new = .false.   !< *TEMPERATURE, OP=NEW: back to T0 first
       !> the output requests in force in this step: those of the step, and for each
       !> category (node, element, contact) and kind (file, print) without a request in
       !> the step those of the step before (CalculiX: the first request of a kind in a

@@ -586,6 +586,9 @@ contains
       if (acc%nb > 0) s%boundary = acc%boundary(1:acc%nb)
       if (acc%nc > 0) s%cload = acc%cload(1:acc%nc)
       if (acc%nd > 0) s%dload = acc%dload(1:acc%nd)
+      s%temperature_new = acc%tnew
+      allocate (s%temperature(acc%nt))
+      if (acc%nt > 0) s%temperature = acc%temperature(1:acc%nt)
       allocate (s%outputs(acc%nout))
       if (acc%nout > 0) s%outputs = acc%outputs(1:acc%nout)
    end subroutine acc_to_step

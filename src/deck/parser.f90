@@ -18,10 +18,12 @@ module vemcontact_deck_parser
                                        kw_node_file, kw_el_file, kw_contact_file, kw_node_print, kw_el_print, &
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
                                        kw_output, kw_equation, kw_part, kw_end_part, kw_assembly, &
-                                       kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart
+                                       kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
+                                       kw_initial_conditions, kw_temperature, kw_expansion
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
-   use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
+   use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
+   use vemcontact_deck_thermal, only: read_initial_conditions, read_temperature
    use vemcontact_deck_loads, only: read_heading, read_boundary, read_cload, read_dload, start_step, &
                                     read_procedure, end_step
    use vemcontact_deck_surface_loads, only: read_dsload
@@ -75,7 +77,7 @@ contains
             call skip_data(p)
             cycle
          end if
-         if (id /= kw_elastic .and. id /= kw_density) p%cur_mat = 0
+         if (id /= kw_elastic .and. id /= kw_density .and. id /= kw_expansion) p%cur_mat = 0
          if (id /= kw_surface_behavior) p%cur_inter = 0
          call check_keyword(p, kw, id, ok)
          if (ok) call check_context(p, id, ok)
@@ -177,6 +179,12 @@ contains
             call read_noop(p, kw, 'PREPRINT')
          case (kw_restart)
             call read_noop(p, kw, 'RESTART')
+         case (kw_initial_conditions)
+            call read_initial_conditions(p, model, kw)
+         case (kw_temperature)
+            call read_temperature(p, model, kw)
+         case (kw_expansion)
+            call read_expansion(p, model)
          case (kw_end_step)
             call end_step(p, model)
             call no_data(p, '*END STEP')

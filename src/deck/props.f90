@@ -14,7 +14,7 @@ module vemcontact_deck_props
    implicit none
    private
 
-   public :: read_material, read_elastic, read_density, read_section
+   public :: read_material, read_elastic, read_density, read_section, read_expansion
 
 contains
 
@@ -153,6 +153,38 @@ contains
       end if
       call extra_lines(p, '*DENSITY')
    end subroutine read_density
+
+   !> *EXPANSION [, TYPE=ISO] [, ZERO=T]: one data line `alpha [, temperature]`, the
+   !> isotropic coefficient of thermal expansion (CalculiX and Abaqus).  ZERO (the
+   !> temperature at which a temperature-dependent alpha is defined) changes nothing
+   !> for a constant alpha and is accepted; temperature tables are not supported.
+   subroutine read_expansion(p, model)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      real(wp) :: alpha
+      logical :: ok
+      if (p%cur_mat == 0) then
+         call err_here(p, '*EXPANSION must follow a *MATERIAL', 'start the material with *MATERIAL, NAME=...')
+      end if
+      call one_data_line(p, '*EXPANSION', 'alpha', ok)
+      if (.not. ok) return
+      if (p%f%n > 2) then
+         call err_here(p, 'too many fields on the *EXPANSION data line: expected alpha [, temperature]')
+         ok = .false.
+      end if
+      if (ok) call get_real(p, 1, 'expansion coefficient', alpha, ok, required=.true.)
+      if (ok .and. p%cur_mat > 0) then
+         associate (m => model%materials(p%cur_mat))
+            if (m%has_expansion) then
+               call err_here(p, 'material '//m%name//' already has *EXPANSION')
+            else
+               m%expansion = alpha
+               m%has_expansion = .true.
+            end if
+         end associate
+      end if
+      call extra_lines(p, '*EXPANSION')
+   end subroutine read_expansion
 
    !> OFFSET= of *SOLID SECTION (CalculiX: the offset of a shell or beam section's
    !> reference surface, in units of the thickness): zero changes nothing for a

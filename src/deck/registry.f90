@@ -25,7 +25,8 @@ module vemcontact_deck_registry
                                  kw_contact_print = 29, kw_node_output = 30, kw_element_output = 31, &
                                  kw_contact_output = 32, kw_output = 33, kw_equation = 34, &
                                  kw_part = 35, kw_end_part = 36, kw_assembly = 37, kw_end_assembly = 38, &
-                                 kw_instance = 39, kw_end_instance = 40, kw_preprint = 41, kw_restart = 42
+                                 kw_instance = 39, kw_end_instance = 40, kw_preprint = 41, kw_restart = 42, &
+                                 kw_initial_conditions = 43, kw_temperature = 44, kw_expansion = 45
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -57,7 +58,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(42) = [ &
+   type(keyword_spec_t), parameter :: keywords(45) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -99,9 +100,12 @@ module vemcontact_deck_registry
                                       keyword_spec_t('INSTANCE', ctx_model, data_optional), &
                                       keyword_spec_t('END INSTANCE', ctx_model, data_none), &
                                       keyword_spec_t('PREPRINT', ctx_model, data_none), &
-                                      keyword_spec_t('RESTART', ctx_any, data_none)]
+                                      keyword_spec_t('RESTART', ctx_any, data_none), &
+                                      keyword_spec_t('INITIAL CONDITIONS', ctx_model, data_required), &
+                                      keyword_spec_t('TEMPERATURE', ctx_step, data_required), &
+                                      keyword_spec_t('EXPANSION', ctx_model, data_required)]
 
-   type(param_spec_t), parameter :: params(132) = [ &
+   type(param_spec_t), parameter :: params(136) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -243,17 +247,22 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_restart, 'STEP', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_restart, 'INC', par_value, .false., val_name, ''), &
                                     ! Abaqus/CAE writes it on every *ELEMENT OUTPUT: local directions (none in 2D)
-                                    param_spec_t(kw_element_output, 'DIRECTIONS', par_value, .false., val_name, 'YES NO')]
+                                    param_spec_t(kw_element_output, 'DIRECTIONS', par_value, .false., val_name, 'YES NO'), &
+                                    ! thermal strains (src/deck/thermal.f90, *EXPANSION in src/deck/props.f90)
+                                    param_spec_t(kw_initial_conditions, 'TYPE', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_temperature, 'OP', par_value, .false., val_name, 'MOD NEW'), &
+                                    param_spec_t(kw_expansion, 'TYPE', par_value, .false., val_name, 'ISO'), &
+                                    param_spec_t(kw_expansion, 'ZERO', par_value, .false., val_real, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(27) = [character(len=24) :: &
+   character(len=24), parameter :: calculix_only(24) = [character(len=24) :: &
                                    'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
                                    'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', &
-                                   'VISCO', 'EXPANSION', 'FILM', 'FREQUENCY', &
-                                   'FRICTION', 'HEATTRANSFER', 'INITIALCONDITIONS', 'KINEMATIC', &
+                                   'VISCO', 'FILM', 'FREQUENCY', &
+                                   'FRICTION', 'HEATTRANSFER', 'KINEMATIC', &
                                    'MPC', 'ORIENTATION', 'PLASTIC', 'SHELLSECTION', &
                                    'SPECIFICHEAT', &
-                                   'TEMPERATURE', 'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
+                                   'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
 
    !> CalculiX/Abaqus keywords of what vemcontact does not model at all (another
    !> analysis, another kind of element or material law): the deck is refused at

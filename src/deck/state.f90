@@ -35,6 +35,9 @@ module vemcontact_deck_state
    type :: step_acc_t
       type(dof_value_t), allocatable :: boundary(:), cload(:)
       type(dload_t), allocatable :: dload(:)
+      type(dof_value_t), allocatable :: temperature(:)   !< *TEMPERATURE (or initial T0)
+      integer :: nt = 0
+      logical :: tnew = .false.
       integer :: nb = 0, nc = 0, nd = 0
       logical :: bnew = .false., cnew = .false., dnew = .false.  !< OP=NEW seen
       integer :: procedure = procedure_static

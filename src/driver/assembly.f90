@@ -8,6 +8,7 @@ module vemcontact_driver_assembly
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_material_elastic, only: elastic_matrix, out_of_plane_stress
+   use vemcontact_driver_thermal, only: thermal_stress, thermal_strain, add_thermal_body
    use vemcontact_element, only: element_stiffness, element_stress, element_body_load, &
                                  element_workspace_size
    implicit none
@@ -289,12 +290,15 @@ contains
    !> the body force among them.
    !> `s_at` (optional, (4, size of elem_conn)): each element's stress at each
    !> of its nodes (element_stress's signode), for nodal_average.
-   subroutine element_stresses(model, u, s_elem, dloads, s_at)
+   !> `dtemp` (optional, (nnode)): the temperature changes T - T0; the stresses are
+   !> then D (E - thermal strain) (vemcontact_driver_thermal).
+   subroutine element_stresses(model, u, s_elem, dloads, s_at, dtemp)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:)
       real(wp), intent(out) :: s_elem(:, :)
       type(dload_t), intent(in), optional :: dloads(:)
       real(wp), intent(out), optional :: s_at(:, :)
+      real(wp), intent(in), optional :: dtemp(:)
       real(wp), allocatable :: xy(:, :), ue(:), work(:), body(:, :), sn(:, :)
       real(wp) :: d(3, 3), sig(3)
       integer :: e, n, i, nmax
@@ -302,6 +306,7 @@ contains
       nmax = max_element_nodes(model)
       allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)), sn(3, nmax))
       body = element_body_forces(model, dloads)
+      if (present(dtemp)) call add_thermal_body(model, dtemp, body)
       do e = 1, model%nelem
          first = model%elem_ptr(e)
          call gather_element(model, u, e, xy, ue, n)
@@ -320,6 +325,7 @@ contains
             end if
          end associate
       end do
+      if (present(dtemp)) call thermal_stress(model, dtemp, s_elem, s_at)
    end subroutine element_stresses
 
    !> The coordinates xy(:, :n) and displacements ue(:2n) of the n nodes of element e,
@@ -366,12 +372,15 @@ contains
    !> -nu/(1 - nu) (xx + yy) that makes S_zz zero.
    !> `s_at`, `e_at` (optional, (4, size of elem_conn)): each element's stress and
    !> strain at each of its nodes (element_stresses' s_at), for nodal_average.
-   pure subroutine element_strains(model, s_elem, e_elem, s_at, e_at)
+   !> `dtemp` (optional): with thermal strains, D^-1 S is the mechanical strain and
+   !> the thermal strain is added to give the total.
+   pure subroutine element_strains(model, s_elem, e_elem, s_at, e_at, dtemp)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: s_elem(:, :)
       real(wp), intent(out) :: e_elem(:, :)
       real(wp), intent(in), optional :: s_at(:, :)
       real(wp), intent(out), optional :: e_at(:, :)
+      real(wp), intent(in), optional :: dtemp(:)
       real(wp) :: d(3, 3)
       integer :: e
       integer(ip) :: k
@@ -386,6 +395,7 @@ contains
             end if
          end associate
       end do
+      if (present(dtemp)) call thermal_strain(model, dtemp, e_elem, e_at)
    end subroutine element_strains
 
    !> The strain (xx, yy, gamma_xy) whose stress under the elastic matrix d is sig:

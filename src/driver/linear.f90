@@ -39,6 +39,7 @@ module vemcontact_driver_linear
    use vemcontact_contact_iteration, only: contact_system_t, solve_contact, judge_conditioning
    use vemcontact_contact_rules, only: matrix_key_t
    use vemcontact_contact_search, only: merge_node_pairs
+   use vemcontact_driver_thermal, only: add_thermal_forces
    use vemcontact_driver_equations, only: constraint_set_t, resolve_equations, equation_graph, &
                                           eliminate_equations, transform_loads, recover_dependent, dependent_dofs
    use vemcontact_sparse_matvec, only: sym_matvec
@@ -291,6 +292,7 @@ contains
       fixed = fixed .or. dependent_dofs(self%cs, size(fixed))
       allocate (f(size(u)))
       call assemble_loads(model, st%force, st%dload, f)
+      if (allocated(st%dtemp)) call add_thermal_forces(model, st%dtemp, f)
       call transform_loads(self%cs, f)
       if (present(contact)) then
          if (contact%n > 0) then

@@ -19,6 +19,7 @@ module vemcontact_driver_static
    use vemcontact_post_estimate, only: error_estimate_t, estimate_error
    use vemcontact_post_estimate2, only: estimate_error2
    use vemcontact_post_reactions, only: reaction_forces, constrained_sets
+   use vemcontact_driver_thermal, only: add_thermal_forces
    use vemcontact_post_labels, only: element_section_sets, element_parts
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
    use vemcontact_output_pvd, only: write_pvd
@@ -276,14 +277,14 @@ contains
          ! element values; strains E = D^-1 S from the same recovery
          ! (element_strains)
          if (allocated(s_at)) then
-            call element_stresses(model, u, s_elem, st%dload, s_at)
+            call element_stresses(model, u, s_elem, st%dload, s_at, st%dtemp)
             call nodal_average(model, s_elem, s_node, s_at)
-            call element_strains(model, s_elem, extra%e_elem, s_at, e_at)
+            call element_strains(model, s_elem, extra%e_elem, s_at, e_at, st%dtemp)
             call nodal_average(model, extra%e_elem, extra%e_node, e_at)
          else
-            call element_stresses(model, u, s_elem, st%dload)
+            call element_stresses(model, u, s_elem, st%dload, dtemp=st%dtemp)
             call nodal_average(model, s_elem, s_node)
-            call element_strains(model, s_elem, extra%e_elem)
+            call element_strains(model, s_elem, extra%e_elem, dtemp=st%dtemp)
             call nodal_average(model, extra%e_elem, extra%e_node)
          end if
          call log%lap('stresses')
@@ -298,6 +299,7 @@ contains
          call say_estimate(est)
          ! reactions: K u - f_ext at the constrained dofs, with the loads in force
          call assemble_loads(model, st%force, st%dload, f)
+         call add_thermal_forces(model, st%dtemp, f)
          call sys%reduce_loads(f)   ! K u is that of the system with *EQUATION eliminated
          call reaction_forces(ku, f, st%fixed, extra%rf)
          rf_sets = constrained_sets(model, st%fixed)
