@@ -11,7 +11,7 @@ module vemcontact_model
    public :: dof_value_t, dload_t, string_t, source_loc_t
    public :: surface_t, interaction_t, contact_pair_t, contact_controls_t, output_request_t
    public :: find_set, location_string, output_requested, element_order, element_side
-   public :: equation_t
+   public :: equation_t, tie_t
 
    !> Element topology
    integer, parameter, public :: etype_polygon = 1 !< VPE/VPS: any number of nodes
@@ -119,6 +119,17 @@ module vemcontact_model
       real(wp), allocatable :: coef(:)        !< coef(1) /= 0
       type(source_loc_t) :: loc               !< the line with the number of terms
    end type equation_t
+
+   !> A *TIE: the slave surface's nodes bonded to the master surface (element sides),
+   !> each slave node to the point of the master face closest to it
+   !> (vemcontact_driver_tie), by linear constraints as CalculiX's.
+   type :: tie_t
+      character(len=:), allocatable :: name       !< upper case
+      character(len=:), allocatable :: slave_name, master_name
+      integer :: slave = 0, master = 0             !< indices into model%surfaces
+      real(wp) :: tolerance = -1.0_wp             !< POSITION TOLERANCE; < 0: the default
+      type(source_loc_t) :: loc
+   end type tie_t
 
    type :: surface_t
       character(len=:), allocatable :: name   !< upper case
@@ -267,6 +278,8 @@ module vemcontact_model
       type(contact_controls_t) :: controls
       !> linear constraints (*EQUATION), eliminated in the linear system; unallocated = none
       type(equation_t), allocatable :: equations(:)
+      !> bonded surfaces (*TIE), turned into constraints by the driver; unallocated = none
+      type(tie_t), allocatable :: ties(:)
       !> the deck has output requests: only the fields they select are written; without
       !> any, every field is written (output_requested)
       logical :: has_output_requests = .false.

@@ -11,6 +11,7 @@ module vemcontact_deck_finish
    use vemcontact_deck_contact, only: finish_contact
    use vemcontact_deck_equations, only: check_equations
    use vemcontact_deck_assembly, only: check_parts
+   use vemcontact_deck_tie, only: finish_ties
    use vemcontact_deck_idmap, only: sort_unique
    use vemcontact_deck_fields, only: int_str, edit_distance
    implicit none
@@ -53,6 +54,7 @@ contains
       if (p%nstep == 0) allocate (model%steps(0))
       call check_equations(p, model)
       call check_parts(p)
+      call finish_ties(p, model)
       ! after other errors (a failed *INCLUDE, a skipped block) these would be noise
       if (p%diag%count > 0) return
       if (model%nnode == 0) call p%diag%report(path, 0, 'the deck defines no nodes (*NODE)')

@@ -19,11 +19,12 @@ module vemcontact_deck_parser
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
                                        kw_output, kw_equation, kw_part, kw_end_part, kw_assembly, &
                                        kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
-                                       kw_initial_conditions, kw_temperature, kw_expansion
+                                       kw_initial_conditions, kw_temperature, kw_expansion, kw_tie
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
    use vemcontact_deck_thermal, only: read_initial_conditions, read_temperature
+   use vemcontact_deck_tie, only: read_tie
    use vemcontact_deck_loads, only: read_heading, read_boundary, read_cload, read_dload, start_step, &
                                     read_procedure, end_step
    use vemcontact_deck_surface_loads, only: read_dsload
@@ -185,6 +186,8 @@ contains
             call read_temperature(p, model, kw)
          case (kw_expansion)
             call read_expansion(p, model)
+         case (kw_tie)
+            call read_tie(p, model, kw)
          case (kw_end_step)
             call end_step(p, model)
             call no_data(p, '*END STEP')

@@ -26,7 +26,7 @@ module vemcontact_deck_registry
                                  kw_contact_output = 32, kw_output = 33, kw_equation = 34, &
                                  kw_part = 35, kw_end_part = 36, kw_assembly = 37, kw_end_assembly = 38, &
                                  kw_instance = 39, kw_end_instance = 40, kw_preprint = 41, kw_restart = 42, &
-                                 kw_initial_conditions = 43, kw_temperature = 44, kw_expansion = 45
+                                 kw_initial_conditions = 43, kw_temperature = 44, kw_expansion = 45, kw_tie = 46
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -58,7 +58,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(45) = [ &
+   type(keyword_spec_t), parameter :: keywords(46) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -103,9 +103,10 @@ module vemcontact_deck_registry
                                       keyword_spec_t('RESTART', ctx_any, data_none), &
                                       keyword_spec_t('INITIAL CONDITIONS', ctx_model, data_required), &
                                       keyword_spec_t('TEMPERATURE', ctx_step, data_required), &
-                                      keyword_spec_t('EXPANSION', ctx_model, data_required)]
+                                      keyword_spec_t('EXPANSION', ctx_model, data_required), &
+                                      keyword_spec_t('TIE', ctx_model, data_required)]
 
-   type(param_spec_t), parameter :: params(136) = [ &
+   type(param_spec_t), parameter :: params(143) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -252,17 +253,25 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_initial_conditions, 'TYPE', par_value, .true., val_name, ''), &
                                     param_spec_t(kw_temperature, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_expansion, 'TYPE', par_value, .false., val_name, 'ISO'), &
-                                    param_spec_t(kw_expansion, 'ZERO', par_value, .false., val_real, '')]
+                                    param_spec_t(kw_expansion, 'ZERO', par_value, .false., val_real, ''), &
+                                    ! bonded surfaces (src/deck/tie.f90)
+                                    param_spec_t(kw_tie, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_tie, 'POSITION TOLERANCE', par_value, .false., val_real, ''), &
+                                    param_spec_t(kw_tie, 'ADJUST', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_tie, 'TYPE', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_tie, 'CYCLIC SYMMETRY', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_tie, 'MULTISTAGE', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_tie, 'FLUID PRESSURE', par_flag, .false., val_name, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(24) = [character(len=24) :: &
+   character(len=24), parameter :: calculix_only(23) = [character(len=24) :: &
                                    'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
                                    'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', &
                                    'VISCO', 'FILM', 'FREQUENCY', &
                                    'FRICTION', 'HEATTRANSFER', 'KINEMATIC', &
                                    'MPC', 'ORIENTATION', 'PLASTIC', 'SHELLSECTION', &
                                    'SPECIFICHEAT', &
-                                   'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
+                                   'TIEPOINTS', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
 
    !> CalculiX/Abaqus keywords of what vemcontact does not model at all (another
    !> analysis, another kind of element or material law): the deck is refused at

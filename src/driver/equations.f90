@@ -20,7 +20,8 @@
 module vemcontact_driver_equations
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t, fatal_error, err_internal, err_input
-   use vemcontact_model, only: model_t, location_string
+   use vemcontact_model, only: model_t, equation_t, location_string
+   use vemcontact_driver_tie, only: tie_equations
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: block_offset
    use vemcontact_contact_search, only: merge_node_pairs
@@ -56,18 +57,26 @@ contains
       type(error_t), allocatable, intent(out) :: error
       integer, allocatable :: owner(:)
       type(term_list_t), allocatable :: rows(:)
+      type(equation_t), allocatable :: eqs(:), tied(:)
       integer :: q, i, pass, nq, r, k
       logical :: changed
-      if (.not. allocated(model%equations)) then
+      call tie_equations(model, tied, error)
+      if (allocated(error)) return
+      if (allocated(model%equations)) then
+         eqs = [model%equations, tied]
+      else
+         eqs = tied
+      end if
+      nq = size(eqs)
+      if (nq == 0) then
          allocate (cs%dep(0), cs%ptr(1), cs%dof(0), cs%a(0))
          cs%ptr(1) = 1
          return
       end if
-      nq = size(model%equations)
       allocate (owner(2*model%nnode), rows(nq), cs%dep(nq))
       owner = 0
       do q = 1, nq
-         associate (eq => model%equations(q))
+         associate (eq => eqs(q))
             cs%dep(q) = 2*eq%node(1) - 2 + eq%dof(1)
             owner(cs%dep(q)) = q
             rows(q)%dof = [(2*eq%node(i) - 2 + eq%dof(i), i=2, size(eq%node))]
@@ -81,7 +90,7 @@ contains
             do while (k <= size(rows(q)%dof))
                r = owner(rows(q)%dof(k))
                if (r == q) then
-                  call fatal_error(error, location_string(model, model%equations(q)%loc)// &
+                  call fatal_error(error, location_string(model, eqs(q)%loc)// &
                                    ': error: the equation''s dependent dof depends on itself through the '// &
                                    '*EQUATION chain', err_input)
                   return
@@ -97,7 +106,7 @@ contains
          if (.not. changed) exit
       end do
       if (changed) then
-         call fatal_error(error, location_string(model, model%equations(1)%loc)// &
+         call fatal_error(error, location_string(model, eqs(1)%loc)// &
                           ': error: the *EQUATION constraints depend on each other in a cycle', err_input)
          return
       end if
