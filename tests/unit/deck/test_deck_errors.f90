@@ -114,6 +114,7 @@ program test_deck_errors
    call expect('grav_zero', ins(17, '*DLOAD'//achar(10)//'E, GRAV, 9.81, 0., 0.'), 19, 'gravity direction (dx, dy) is zero')
    call expect('grav_z', ins(17, '*DLOAD'//achar(10)//'E, GRAV, 9.81, 0., -1., 1.'), 19, &
                'gravity direction has a z component')
+   call expect('bc_type', rep(13, '1, FIXED'), 13, 'unknown boundary type FIXED')
    call expect('nlgeom', rep(14, '*STEP, NLGEOM=YES'), 14, 'NLGEOM (geometric nonlinearity) is outside')
    call expect('inc', rep(14, '*STEP, INC=-3'), 14, 'parameter INC of *STEP must be a positive integer')
    call expect('node_in_step', ins(15, '*NODE'//achar(10)//'9, 0., 0.'), 16, '*NODE is not allowed inside a *STEP')
