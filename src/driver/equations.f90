@@ -218,15 +218,20 @@ contains
       end do
    end function dependent_dofs
 
-   !> k <- T^T k T, equation by equation (serial matrices only).  The pattern must
-   !> come from equation_graph.  `ok` false if an entry is missing from it.
-   subroutine eliminate_equations(cs, k, ok)
+   !> k <- T^T k T, equation by equation (serial matrices only).  The pattern and
+   !> its node graph adj_ptr/adj must come from equation_graph (the rows of column d
+   !> below its diagonal are found through the neighbours of d's node, so the work
+   !> is that of the couplings, not of the matrix size).  `ok` false if an entry is
+   !> missing from the pattern.
+   subroutine eliminate_equations(cs, k, adj_ptr, adj, ok)
       type(constraint_set_t), intent(in) :: cs
       type(sym_csc_t), intent(inout) :: k
+      integer(i8), intent(in) :: adj_ptr(:)
+      integer(ip), intent(in) :: adj(:)
       logical, intent(out) :: ok
       real(wp), allocatable :: col(:)
       integer(ip), allocatable :: rows(:)
-      integer(ip) :: d, r, j
+      integer(ip) :: d, r
       integer(i8) :: p
       integer :: q, nr, i, jj
       real(wp) :: kdd
@@ -243,14 +248,11 @@ contains
             col(nr) = k%val(p)
             k%val(p) = 0.0_wp
          end do
-         do j = d + 1, k%n
-            p = find(k, d, j)
-            if (p > 0) then
-               nr = nr + 1
-               rows(nr) = j
-               col(nr) = k%val(p)
-               k%val(p) = 0.0_wp
-            end if
+         if (mod(d, 2) == 1) call take(d + 1)
+         do p = adj_ptr((d + 1)/2), adj_ptr((d + 1)/2 + 1) - 1
+            if (adj(p) <= (d + 1)/2) cycle
+            call take(2*adj(p) - 1)
+            call take(2*adj(p))
          end do
          kdd = k%val(k%col_ptr(d + 1) - 1)
          do i = cs%ptr(q), cs%ptr(q + 1) - 1
@@ -268,6 +270,18 @@ contains
          end do
       end do
    contains
+      !> Entry (d, j), j > d, into the list of column d's rows, and zero it.
+      subroutine take(jj)
+         integer(ip), intent(in) :: jj
+         integer(i8) :: pp
+         pp = find(k, d, jj)
+         if (pp <= 0) return
+         nr = nr + 1
+         rows(nr) = jj
+         col(nr) = k%val(pp)
+         k%val(pp) = 0.0_wp
+      end subroutine take
+
       !> k(x, y) += v for the symmetric pair (one stored entry).
       subroutine add_to(x, y, v)
          integer(ip), intent(in) :: x, y

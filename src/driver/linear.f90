@@ -223,7 +223,7 @@ contains
       else
          call assemble_stiffness(model, self%k, error)
          if (allocated(error)) return
-         call eliminate_equations(self%cs, self%k, ok)
+         call eliminate_equations(self%cs, self%k, adj_ptr, adj, ok)
          if (.not. ok) then
             call fatal_error(error, 'internal error: an *EQUATION coupling is outside the matrix pattern', &
                              err_solver)
