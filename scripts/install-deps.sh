@@ -8,6 +8,7 @@ cd "$(dirname "$0")/.."
 debs=(ca-certificates gfortran gcc make cmake ninja-build pkg-config libopenblas-dev liblapack-dev
       libsuitesparse-dev libmetis-dev libhdf5-dev libdeflate-dev hdf5-tools python3 python3-venv
       calculix-ccx   # ccx: the CalculiX decks of tests/data/calculix are also run in CalculiX
+      calculix-ccx-test   # CalculiX's own test decks and their reference results (postprocess/tests/test_calculix_suite.py)
       petsc-dev)     # optional at build time: --solver gamg|hypre|mumps (PETSc 3.18 with MUMPS, hypre, Open MPI)
 missing=()
 for p in "${debs[@]}"; do

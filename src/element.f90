@@ -49,7 +49,9 @@ contains
    !> codes above; ke = 0 when info /= 0.  `tau` (optional, > 0): the VEM
    !> stabilisation factor (default 1); the FEM kernels have no stabilisation and
    !> ignore it.  `order` (optional, default 1): the element's order.
-   pure subroutine element_stiffness(form, xy, d, thick, ke, work, info, tau, order)
+   !> `reduced` (optional, default false): reduced Gauss integration of the
+   !> 8-node FEM quad (CPE8R/CPS8R); the other kernels ignore it.
+   pure subroutine element_stiffness(form, xy, d, thick, ke, work, info, tau, order, reduced)
       integer, intent(in) :: form
       real(wp), intent(in) :: xy(:, :), d(3, 3), thick
       real(wp), intent(out) :: ke(:, :)
@@ -57,13 +59,14 @@ contains
       integer, intent(out) :: info
       real(wp), intent(in), optional :: tau
       integer, intent(in), optional :: order
+      logical, intent(in), optional :: reduced
       if (second(order)) then
          if (form == form_fem) then
             select case (size(xy, 2))
             case (6)
                call tri6_stiffness(xy, d, thick, ke, info)
             case (8)
-               call quad8_stiffness(xy, d, thick, ke, info)
+               call quad8_stiffness(xy, d, thick, ke, info, reduced)
             case default
                ke = 0.0_wp
                info = elem_fem_nodes
@@ -95,8 +98,8 @@ contains
    !> `signode(3, n)` (optional): the element's stress at each of its nodes:
    !> the k = 2 virtual element's projected (linear) stress there, the 6- and
    !> 8-node FEM stress evaluated at the node, the element stress above for
-   !> every first-order element.
-   pure subroutine element_stress(form, xy, d, ue, work, sig, order, thick, tau, body, signode)
+   !> every first-order element.  `reduced` as in element_stiffness.
+   pure subroutine element_stress(form, xy, d, ue, work, sig, order, thick, tau, body, signode, reduced)
       integer, intent(in) :: form
       real(wp), intent(in) :: xy(:, :), d(3, 3), ue(:)
       real(wp), intent(inout) :: work(:)
@@ -104,6 +107,7 @@ contains
       integer, intent(in), optional :: order
       real(wp), intent(in), optional :: thick, tau, body(2)
       real(wp), intent(out), optional :: signode(:, :)
+      logical, intent(in), optional :: reduced
       real(wp) :: t
       integer :: i
       sig = 0.0_wp
@@ -114,7 +118,7 @@ contains
                call tri6_stress(xy, d, ue, sig, signode)
                return
             case (8)
-               call quad8_stress(xy, d, ue, sig, signode)
+               call quad8_stress(xy, d, ue, sig, signode, reduced)
                return
             end select
          else

@@ -13,6 +13,7 @@ module vemcontact_model
    public :: uplift_t
    public :: find_set, location_string, output_requested, element_order, element_side
    public :: amplitude_t
+   public :: equation_t, tie_t
 
    !> Element topology
    integer, parameter, public :: etype_polygon = 1 !< VPE/VPS: any number of nodes
@@ -75,6 +76,9 @@ module vemcontact_model
       real(wp) :: density = 0.0_wp
       logical :: has_elastic = .false.
       logical :: has_density = .false.
+      !> *EXPANSION: isotropic thermal expansion coefficient (thermal strain alpha (T - T0))
+      real(wp) :: expansion = 0.0_wp
+      logical :: has_expansion = .false.
       type(source_loc_t) :: loc
    end type material_t
 
@@ -125,6 +129,26 @@ module vemcontact_model
    end type amplitude_t
 
    !> *SURFACE: element sides (elem(k), side(k)) or nodes.
+   !> A linear multi-point constraint (*EQUATION): sum_i coef(i) u(node(i), dof(i)) = 0;
+   !> the first term's dof is dependent (eliminated), as in CalculiX.
+   type :: equation_t
+      integer(ip), allocatable :: node(:)     !< internal node index of each term
+      integer, allocatable :: dof(:)          !< 1 = x, 2 = y
+      real(wp), allocatable :: coef(:)        !< coef(1) /= 0
+      type(source_loc_t) :: loc               !< the line with the number of terms
+   end type equation_t
+
+   !> A *TIE: the slave surface's nodes bonded to the master surface (element sides),
+   !> each slave node to the point of the master face closest to it
+   !> (vemcontact_driver_tie), by linear constraints as CalculiX's.
+   type :: tie_t
+      character(len=:), allocatable :: name       !< upper case
+      character(len=:), allocatable :: slave_name, master_name
+      integer :: slave = 0, master = 0             !< indices into model%surfaces
+      real(wp) :: tolerance = -1.0_wp             !< POSITION TOLERANCE; < 0: the default
+      type(source_loc_t) :: loc
+   end type tie_t
+
    type :: surface_t
       character(len=:), allocatable :: name   !< upper case
       integer :: kind = 0                     !< surface_element or surface_node
@@ -253,6 +277,10 @@ module vemcontact_model
       type(dload_t), allocatable :: dload(:)
       !> *UPLIFT of the step: replaces an earlier one of the same interaction, holds after
       type(uplift_t), allocatable :: uplift(:)
+      !> nodal temperatures: *TEMPERATURE of a step (dof unused), or in `model%initial`
+      !> *INITIAL CONDITIONS, TYPE=TEMPERATURE (the reference temperature T0)
+      type(dof_value_t), allocatable :: temperature(:)
+      logical :: temperature_new = .false.   !< *TEMPERATURE, OP=NEW: back to T0 first
       !> the output requests in force in this step: those of the step, and for each
       !> category (node, element, contact) and kind (file, print) without a request in
       !> the step those of the step before (CalculiX: the first request of a kind in a
@@ -284,6 +312,9 @@ module vemcontact_model
       !> VEM stabilisation factor tau of each element (1 = the default of the
       !> element kernel); models built without it (unallocated) use 1 everywhere
       real(wp), allocatable :: elem_stab(:)
+      !> reduced integration (CPE8R/CPS8R: 2 x 2 Gauss on the 8-node quad); models
+      !> built without it (unallocated) use full integration everywhere
+      logical, allocatable :: elem_reduced(:)
       type(source_loc_t), allocatable :: elem_loc(:)
       ! sets, materials, sections, steps
       type(named_set_t), allocatable :: nsets(:)
@@ -303,6 +334,10 @@ module vemcontact_model
       type(interaction_t), allocatable :: interactions(:)
       type(contact_pair_t), allocatable :: pairs(:)
       type(contact_controls_t) :: controls
+      !> linear constraints (*EQUATION), eliminated in the linear system; unallocated = none
+      type(equation_t), allocatable :: equations(:)
+      !> bonded surfaces (*TIE), turned into constraints by the driver; unallocated = none
+      type(tie_t), allocatable :: ties(:)
       !> the deck has output requests: only the fields they select are written; without
       !> any, every field is written (output_requested)
       logical :: has_output_requests = .false.

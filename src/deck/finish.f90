@@ -9,6 +9,9 @@ module vemcontact_deck_finish
    use vemcontact_deck_state, only: deck_parser_t, err_at, loc_str
    use vemcontact_deck_loads, only: end_step, acc_to_step, trim_steps
    use vemcontact_deck_contact, only: finish_contact
+   use vemcontact_deck_equations, only: check_equations
+   use vemcontact_deck_assembly, only: check_parts
+   use vemcontact_deck_tie, only: finish_ties
    use vemcontact_deck_idmap, only: sort_unique
    use vemcontact_deck_fields, only: int_str, edit_distance
    implicit none
@@ -49,6 +52,9 @@ contains
       call acc_to_step(p%init, model%initial)
       model%initial%name = 'initial'
       call trim_steps(p, model)
+      call check_equations(p, model)
+      call check_parts(p)
+      call finish_ties(p, model)
       ! after other errors (a failed *INCLUDE, a skipped block) these would be noise
       if (p%diag%count > 0) return
       if (model%nnode == 0) call p%diag%report(path, 0, 'the deck defines no nodes (*NODE)')
@@ -97,7 +103,10 @@ contains
          model%elem_plane = model%elem_plane(1:n)
          model%elem_loc = model%elem_loc(1:n)
       end if
-      allocate (model%elem_form(n), model%elem_mat(n), model%elem_thick(n), model%elem_stab(n))
+      allocate (model%elem_form(n), model%elem_mat(n), model%elem_thick(n), model%elem_stab(n), &
+                model%elem_reduced(n))
+      model%elem_reduced = .false.
+      if (p%reduced%n > 0) model%elem_reduced(p%reduced%a(1:p%reduced%n)) = .true.
       model%elem_form = 0
       model%elem_mat = 0
       model%elem_thick = 1.0_wp

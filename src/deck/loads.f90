@@ -8,7 +8,7 @@ module vemcontact_deck_loads
    use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure, &
                                dload_hydrostatic, procedure_static, procedure_geostatic, element_order
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, here, &
-                                    err_here, err_at, warn_here, field, get_int, get_real, push_item, push_dof, &
+                                    err_here, refuse_here, err_at, warn_here, field, get_int, get_real, push_item, push_dof, &
                                     push_dload, node_index, elem_index, get_set, set_suggestion, &
                                     ref_kind, ref_id, ref_name, loc_str, tidy_items
    use vemcontact_deck_lines, only: advance
@@ -166,6 +166,12 @@ contains
          end if
          call field_nodes(p, model, 1, nodes, ok)
          if (.not. ok) cycle
+         if (boundary_type(p, dof1, dof2, ok)) then
+            ! Abaqus' named conditions (Abaqus/CAE writes them): zero values
+            if (.not. ok) cycle
+            call push_range(dof1, dof2, 0.0_wp)
+            cycle
+         end if
          call get_int(p, 2, 'first degree of freedom', dof1, ok)
          if (.not. ok) cycle
          dof2 = dof1
@@ -178,17 +184,63 @@ contains
          call get_real(p, 4, 'prescribed value', val, ok)
          if (.not. ok) cycle
          if (.not. dofs_ok(p, dof1, dof2)) cycle
+         call push_range(dof1, dof2, val)
+      end do
+   contains
+      subroutine push_range(d1, d2, v)
+         integer(ip), intent(in) :: d1, d2
+         real(wp), intent(in) :: v
          do i = 1, nodes%n
-            do dof = dof1, min(int(dof2), 2)
+            do dof = int(d1), min(int(d2), 2)
                if (p%in_step) then
-                  call push_dof(p%cur%boundary, p%cur%nb, dof_value_t(nodes%a(i), dof, val))
+                  call push_dof(p%cur%boundary, p%cur%nb, dof_value_t(nodes%a(i), dof, v))
                else
-                  call push_dof(p%init%boundary, p%init%nb, dof_value_t(nodes%a(i), dof, val))
+                  call push_dof(p%init%boundary, p%init%nb, dof_value_t(nodes%a(i), dof, v))
                end if
             end do
          end do
-      end do
+      end subroutine push_range
    end subroutine read_boundary
+
+   !> Whether field 2 of a *BOUNDARY line is one of Abaqus' named conditions, and the
+   !> in-plane dofs it holds: ENCASTRE and PINNED 1-2, XSYMM 1 (u1 = ur2 = ur3 = 0),
+   !> YSYMM 2, XASYMM 2 (u2 = u3 = ur1 = 0), YASYMM 1; ZSYMM and ZASYMM hold no
+   !> in-plane dof of a 2D model (ok false, no error: nothing to hold).  Other names
+   !> are errors (ok false).
+   function boundary_type(p, dof1, dof2, ok) result(named)
+      type(deck_parser_t), intent(inout) :: p
+      integer(ip), intent(out) :: dof1, dof2
+      logical, intent(out) :: ok
+      logical :: named
+      character(len=:), allocatable :: f
+      dof1 = 1
+      dof2 = 2
+      ok = .true.
+      named = .false.
+      if (p%f%n < 2) return
+      f = to_upper(squeeze(field(p, 2)))
+      if (len(f) == 0) return
+      if (index('ABCDEFGHIJKLMNOPQRSTUVWXYZ', f(1:1)) == 0) return
+      named = .true.
+      select case (f)
+      case ('ENCASTRE', 'PINNED')
+      case ('XSYMM', 'YASYMM')
+         dof2 = 1
+      case ('YSYMM', 'XASYMM')
+         dof1 = 2
+      case ('ZSYMM', 'ZASYMM')
+         ok = .false.
+      case default
+         call err_here(p, 'unknown boundary type '//f//' on a *BOUNDARY line', &
+                       'Abaqus'' types are ENCASTRE, PINNED, XSYMM, YSYMM, ZSYMM, XASYMM, YASYMM, ZASYMM; '// &
+                       'or give first dof, last dof, value')
+         ok = .false.
+      end select
+      if (ok .and. p%f%n > 2) then
+         call err_here(p, 'a named boundary type takes no further fields')
+         ok = .false.
+      end if
+   end function boundary_type
 
    !> Check a dof range; dofs are 1 (x), 2 (y) and 3 (z, ignored).
    function dofs_ok(p, dof1, dof2) result(ok)
@@ -425,8 +477,9 @@ contains
       end if
       call get_param(kw, 'NLGEOM', val, found)
       if (found .and. val /= 'NO') then
-         call err_here(p, 'NLGEOM (geometric nonlinearity) is not supported: vemcontact is a '// &
-                       'small-strain code', 'remove NLGEOM or write NLGEOM=NO')
+         call refuse_here(p, 'NLGEOM (geometric nonlinearity)', 'vemcontact is a small-strain code: '// &
+                          'remove NLGEOM or write NLGEOM=NO to run the step linearly')
+         return
       end if
       p%in_step = .true.
       p%procedure_seen = .false.
@@ -659,6 +712,8 @@ contains
       call move_alloc(a%cload, b%cload)
       call move_alloc(a%dload, b%dload)
       call move_alloc(a%uplift, b%uplift)
+      b%temperature_new = a%temperature_new
+      call move_alloc(a%temperature, b%temperature)
       call move_alloc(a%outputs, b%outputs)
       b%loc = a%loc
    end subroutine move_step
@@ -684,6 +739,9 @@ contains
       if (acc%nc > 0) s%cload = acc%cload(1:acc%nc)
       if (acc%nd > 0) s%dload = acc%dload(1:acc%nd)
       if (allocated(acc%uplift)) s%uplift = acc%uplift
+      s%temperature_new = acc%tnew
+      allocate (s%temperature(acc%nt))
+      if (acc%nt > 0) s%temperature = acc%temperature(1:acc%nt)
       allocate (s%outputs(acc%nout))
       if (acc%nout > 0) s%outputs = acc%outputs(1:acc%nout)
    end subroutine acc_to_step

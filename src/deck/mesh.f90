@@ -7,7 +7,7 @@ module vemcontact_deck_mesh
    use vemcontact_model, only: model_t, source_loc_t, etype_polygon, etype_quad4, etype_tri3, &
                                etype_polygon2, etype_quad8, etype_tri6, &
                                plane_strain, plane_stress
-   use vemcontact_deck_state, only: deck_parser_t, item_list_t, here, err_here, field, get_id, &
+   use vemcontact_deck_state, only: deck_parser_t, item_list_t, here, err_here, refuse_here, warn_here, field, get_id, &
                                     get_int, get_real, push_item, node_index, elem_index, get_set, &
                                     set_suggestion, ref_kind, ref_id, ref_name
    use vemcontact_deck_lines, only: advance, skip_data
@@ -22,17 +22,18 @@ module vemcontact_deck_mesh
 
 contains
 
-   !> *NODE [, NSET=name]; data lines: id, x, y [, z = 0].
+   !> *NODE [, NSET=name]; data lines: id, x, y [, z = 0] [, ignored numbers].
    subroutine read_nodes(p, model, kw)
       type(deck_parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
       character(len=:), allocatable :: sname
-      logical :: found, ok
+      logical :: found, ok, warned
       integer :: kset
       integer(ip) :: id
       real(wp) :: x, y, z
       kset = 0
+      warned = .false.
       call get_param(kw, 'NSET', sname, found)
       if (found) call get_set(model%nsets, p%nset_items, p%nnset, sname, here(p), .true., kset)
       do
@@ -40,9 +41,10 @@ contains
          if (p%src%kind /= line_data) exit
          call split_fields(p%src%text(1:p%src%length), p%f)
          if (p%f%n > 4) then
-            call err_here(p, 'too many fields on a *NODE data line: expected id, x, y [, z], found '// &
-                          int_str(p%f%n))
-            cycle
+            ! CalculiX reads id, x, y, z and ignores what follows (its test deck
+            ! planestress.inp has a line "21, 0.75, 1.0, ,0.0": a blank z, then a stray 0)
+            call check_extra_fields(p, warned, ok)
+            if (.not. ok) cycle
          end if
          call get_id(p, 1, 'node id', id, ok)
          if (.not. ok) cycle
@@ -57,10 +59,58 @@ contains
                           ': vemcontact is two-dimensional, a third coordinate must be 0')
             cycle
          end if
-         call add_node(p, model, id, x, y)
+         call add_node(p, model, id + p%node_offset, x, y)
          if (kset > 0) call push_item(p%nset_items(kset), model%nnode)
       end do
    end subroutine read_nodes
+
+   !> The family of a CalculiX/Abaqus element type vemcontact does not model
+   !> ('' when `tname` is none of them, e.g. a misspelt type).
+   pure function element_family(tname) result(what)
+      character(len=*), intent(in) :: tname
+      character(len=:), allocatable :: what
+      what = ''
+      if (starts(tname, 'CAX') .or. starts(tname, 'CGAX')) then
+         what = 'axisymmetric'
+      else if (starts(tname, 'C3D')) then
+         what = 'three-dimensional solid'
+      else if (index(' CPE4R CPS4R CPE4I CPS4I CPE4H CPE3H CPE6H CPE8H CPE4RH CPE8RH CPE6M CPS6M CPE6MH ', &
+                     ' '//tname//' ') > 0 .or. starts(tname, 'CPEG')) then
+         what = 'a plane element variant vemcontact does not have'
+      else if (starts(tname, 'S3') .or. starts(tname, 'S4') .or. starts(tname, 'S6') .or. &
+               starts(tname, 'S8') .or. starts(tname, 'M3D')) then
+         what = 'shell or membrane'
+      else if (starts(tname, 'B2') .or. starts(tname, 'B3') .or. starts(tname, 'T2D') .or. &
+               starts(tname, 'T3D') .or. starts(tname, 'U1')) then
+         what = 'beam or truss'
+      else if (starts(tname, 'SPRING') .or. starts(tname, 'DASHPOT') .or. starts(tname, 'GAP') .or. &
+               tname == 'MASS' .or. starts(tname, 'DCOUP') .or. starts(tname, 'DC')) then
+         what = 'spring, dashpot, gap, mass or heat transfer'
+      end if
+   contains
+      pure logical function starts(s, prefix)
+         character(len=*), intent(in) :: s, prefix
+         starts = .false.
+         if (len(s) >= len(prefix)) starts = s(1:len(prefix)) == prefix
+      end function starts
+   end function element_family
+
+   !> Fields after the fourth of a *NODE line: numbers are ignored, as CalculiX
+   !> does (one warning per *NODE block); anything else is an error.
+   subroutine check_extra_fields(p, warned, ok)
+      type(deck_parser_t), intent(inout) :: p
+      logical, intent(inout) :: warned
+      logical, intent(out) :: ok
+      integer :: k
+      real(wp) :: v
+      do k = 5, p%f%n
+         call get_real(p, k, 'field '//int_str(k)//' of a *NODE line (id, x, y, z)', v, ok)
+         if (.not. ok) return
+      end do
+      if (.not. warned) call warn_here(p, 'fields after id, x, y, z of a *NODE line are ignored, as in '// &
+                                       'CalculiX (found '//int_str(p%f%n)//')')
+      warned = .true.
+   end subroutine check_extra_fields
 
    subroutine add_node(p, model, id, x, y)
       type(deck_parser_t), intent(inout) :: p
@@ -100,10 +150,11 @@ contains
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
       character(len=:), allocatable :: tname, sname
-      logical :: found, ok, more, continued
+      logical :: found, ok, more, continued, reduced
       integer :: kset, etype, plane, nn, k, nnod, stat
       integer(ip) :: id, nid
       call get_param(kw, 'TYPE', tname, found)
+      reduced = tname == 'CPE8R' .or. tname == 'CPS8R'
       select case (tname)
       case ('VPE')
          etype = etype_polygon; plane = plane_strain; nn = 0
@@ -121,18 +172,24 @@ contains
          etype = etype_polygon2; plane = plane_strain; nn = 0
       case ('VPS2')
          etype = etype_polygon2; plane = plane_stress; nn = 0
-      case ('CPE8')
+      case ('CPE8', 'CPE8R')
          etype = etype_quad8; plane = plane_strain; nn = 8
-      case ('CPS8')
+      case ('CPS8', 'CPS8R')
          etype = etype_quad8; plane = plane_stress; nn = 8
       case ('CPE6')
          etype = etype_tri6; plane = plane_strain; nn = 6
       case ('CPS6')
          etype = etype_tri6; plane = plane_stress; nn = 6
       case default
+         if (len(element_family(tname)) > 0) then
+            call refuse_here(p, 'element type '//tname//' ('//element_family(tname)//')', &
+                             'the elements of vemcontact are VPE, VPS, VPE2, VPS2, CPE4, CPS4, CPE3, CPS3, '// &
+                             'CPE8, CPS8, CPE8R, CPS8R, CPE6, CPS6')
+            return
+         end if
          call err_here(p, 'unsupported element type '//tname, &
                        'supported types are VPE, VPS (polygons), VPE2, VPS2 (second-order polygons), '// &
-                       'CPE4, CPS4, CPE3, CPS3, CPE8, CPS8, CPE6, CPS6')
+                       'CPE4, CPS4, CPE3, CPS3, CPE8, CPS8, CPE8R, CPS8R, CPE6, CPS6')
          p%element_errors = .true.
          call skip_data(p)
          return
@@ -191,7 +248,7 @@ contains
                ok = .false.
                exit
             end if
-            model%elem_conn(p%nconn + k) = nid
+            model%elem_conn(p%nconn + k) = nid + p%node_offset
          end do
          if (.not. ok) then
             p%element_errors = .true.
@@ -200,12 +257,13 @@ contains
          p%nconn = p%nconn + nnod
          model%nelem = model%nelem + 1
          associate (e => model%nelem)
-            model%elem_id(e) = id
+            model%elem_id(e) = id + p%elem_offset
             model%elem_ptr(e + 1) = p%nconn + 1
             model%elem_type(e) = etype
             model%elem_plane(e) = plane
             model%elem_loc(e) = here(p)
          end associate
+         if (reduced) call push_item(p%reduced, model%nelem)
          if (kset > 0) call push_item(p%elset_items(kset), model%nelem)
       end do
    end subroutine read_elements

@@ -4,10 +4,11 @@
 !> next line it can make sense of, so one run reports all problems of a deck.
 module vemcontact_deck_parser
    use vemcontact_model, only: model_t, output_node, output_element, output_contact
-   use vemcontact_deck_state, only: deck_parser_t, err_here
+   use vemcontact_deck_state, only: deck_parser_t, err_here, refuse_here
    use vemcontact_deck_source, only: line_keyword, line_data, line_eof
    use vemcontact_deck_fields, only: keyword_line_t, parse_keyword_line
    use vemcontact_deck_registry, only: keywords, find_keyword, keyword_suggestion, is_calculix_keyword, &
+                                       out_of_scope_feature, &
                                        known_keyword_list, ctx_model, ctx_step, &
                                        kw_heading, kw_node, kw_element, kw_nset, kw_elset, &
                                        kw_material, kw_elastic, kw_density, kw_solid_section, &
@@ -16,13 +17,20 @@ module vemcontact_deck_parser
                                        kw_contact_pair, kw_contact_controls, kw_geostatic, kw_dsload, &
                                        kw_node_file, kw_el_file, kw_contact_file, kw_node_print, kw_el_print, &
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
-                                       kw_output, kw_uplift
+                                       kw_output, kw_uplift, kw_equation, kw_part, kw_end_part, kw_assembly, &
+                                       kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
+                                       kw_initial_conditions, kw_temperature, kw_expansion, kw_tie
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
-   use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
+   use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
+   use vemcontact_deck_thermal, only: read_initial_conditions, read_temperature
+   use vemcontact_deck_tie, only: read_tie
    use vemcontact_deck_loads, only: read_heading, read_boundary, read_cload, read_dload, start_step, &
                                     read_procedure, end_step
    use vemcontact_deck_surface_loads, only: read_dsload
+   use vemcontact_deck_equations, only: read_equation
+   use vemcontact_deck_assembly, only: read_part, end_part, read_assembly, end_assembly, read_instance, &
+                                       end_instance, read_noop, instance_offsets, qualify_in_part
    use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_uplift, only: read_uplift
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
@@ -43,7 +51,7 @@ contains
       logical :: ok, first_data
       first_data = .true.
       call advance(p)
-      do while (p%src%kind /= line_eof)
+      do while (p%src%kind /= line_eof .and. .not. p%refused)
          if (p%src%kind == line_data) then
             ! only possible before the first keyword: handlers consume their data lines
             if (first_data) call err_here(p, 'data line before the first keyword', &
@@ -56,6 +64,10 @@ contains
          call parse_keyword_line(p%src%text(1:p%src%length), kw)
          id = find_keyword(kw%name)
          if (id == 0) then
+            if (len(out_of_scope_feature(kw%name)) > 0) then
+               call refuse_here(p, out_of_scope_feature(kw%name))
+               exit
+            end if
             if (len(kw%name) == 0) then
                call err_here(p, 'missing keyword name after *', 'known keywords are '//known_keyword_list())
             else if (is_calculix_keyword(kw%name)) then
@@ -67,7 +79,7 @@ contains
             call skip_data(p)
             cycle
          end if
-         if (id /= kw_elastic .and. id /= kw_density) p%cur_mat = 0
+         if (id /= kw_elastic .and. id /= kw_density .and. id /= kw_expansion) p%cur_mat = 0
          if (id /= kw_surface_behavior) p%cur_inter = 0
          call check_keyword(p, kw, id, ok)
          if (ok) call check_context(p, id, ok)
@@ -80,6 +92,14 @@ contains
             call skip_data(p)
             cycle
          end if
+         if (p%cur_part > 0) call qualify_set_names(p, kw)
+         if (id == kw_nset .or. id == kw_elset) then
+            call instance_offsets(p, kw, ok)
+            if (.not. ok) then
+               call skip_data(p)
+               cycle
+            end if
+         end if
          select case (id)
          case (kw_heading)
             call read_heading(p, model)
@@ -89,8 +109,10 @@ contains
             call read_elements(p, model, kw)
          case (kw_nset)
             call read_set(p, model, kw, .true.)
+            call restore_offsets(p)
          case (kw_elset)
             call read_set(p, model, kw, .false.)
+            call restore_offsets(p)
          case (kw_material)
             call read_material(p, model, kw)
             call no_data(p, '*MATERIAL')
@@ -138,6 +160,37 @@ contains
             call read_output(p, model, kw)
          case (kw_uplift)
             call read_uplift(p, model, kw)
+         case (kw_equation)
+            call read_equation(p, model)
+         case (kw_part)
+            call read_part(p, model, kw)
+            call no_data(p, '*PART')
+         case (kw_end_part)
+            call end_part(p, model)
+            call no_data(p, '*END PART')
+         case (kw_assembly)
+            call read_assembly(p)
+            call no_data(p, '*ASSEMBLY')
+         case (kw_end_assembly)
+            call end_assembly(p)
+            call no_data(p, '*END ASSEMBLY')
+         case (kw_instance)
+            call read_instance(p, model, kw)
+         case (kw_end_instance)
+            call end_instance(p)
+            call no_data(p, '*END INSTANCE')
+         case (kw_preprint)
+            call read_noop(p, kw, 'PREPRINT')
+         case (kw_restart)
+            call read_noop(p, kw, 'RESTART')
+         case (kw_initial_conditions)
+            call read_initial_conditions(p, model, kw)
+         case (kw_temperature)
+            call read_temperature(p, model, kw)
+         case (kw_expansion)
+            call read_expansion(p, model)
+         case (kw_tie)
+            call read_tie(p, model, kw)
          case (kw_end_step)
             call end_step(p, model)
             call no_data(p, '*END STEP')
@@ -147,6 +200,30 @@ contains
          end select
       end do
    end subroutine parse_lines
+
+   !> Inside a *PART, the set names of NSET= and ELSET= are the part's own:
+   !> "part.name" until its *INSTANCE renames them.
+   subroutine qualify_set_names(p, kw)
+      type(deck_parser_t), intent(in) :: p
+      type(keyword_line_t), intent(inout) :: kw
+      integer :: k
+      do k = 1, kw%nparam
+         if (kw%pname(k)%s == 'NSET' .or. kw%pname(k)%s == 'ELSET') &
+            kw%pvalue(k)%s = qualify_in_part(p, kw%pvalue(k)%s)
+      end do
+   end subroutine qualify_set_names
+
+   !> After a set keyword: the offsets of the part being read (those of an
+   !> INSTANCE= parameter held for that keyword only).
+   subroutine restore_offsets(p)
+      type(deck_parser_t), intent(inout) :: p
+      p%node_offset = 0
+      p%elem_offset = 0
+      if (p%cur_part > 0) then
+         p%node_offset = p%parts(p%cur_part)%node_offset
+         p%elem_offset = p%parts(p%cur_part)%elem_offset
+      end if
+   end subroutine restore_offsets
 
    !> Model-data keywords may not appear inside a step, step keywords only there.
    subroutine check_context(p, id, ok)

@@ -14,7 +14,7 @@ module vemcontact_deck_props
    implicit none
    private
 
-   public :: read_material, read_elastic, read_density, read_section
+   public :: read_material, read_elastic, read_density, read_section, read_expansion
 
 contains
 
@@ -154,7 +154,58 @@ contains
       call extra_lines(p, '*DENSITY')
    end subroutine read_density
 
-   !> *SOLID SECTION, ELSET=, MATERIAL= [, FORMULATION=VEM|FEM] [, STABILIZATION=tau];
+   !> *EXPANSION [, TYPE=ISO] [, ZERO=T]: one data line `alpha [, temperature]`, the
+   !> isotropic coefficient of thermal expansion (CalculiX and Abaqus).  ZERO (the
+   !> temperature at which a temperature-dependent alpha is defined) changes nothing
+   !> for a constant alpha and is accepted; temperature tables are not supported.
+   subroutine read_expansion(p, model)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      real(wp) :: alpha
+      logical :: ok
+      if (p%cur_mat == 0) then
+         call err_here(p, '*EXPANSION must follow a *MATERIAL', 'start the material with *MATERIAL, NAME=...')
+      end if
+      call one_data_line(p, '*EXPANSION', 'alpha', ok)
+      if (.not. ok) return
+      if (p%f%n > 2) then
+         call err_here(p, 'too many fields on the *EXPANSION data line: expected alpha [, temperature]')
+         ok = .false.
+      end if
+      if (ok) call get_real(p, 1, 'expansion coefficient', alpha, ok, required=.true.)
+      if (ok .and. p%cur_mat > 0) then
+         associate (m => model%materials(p%cur_mat))
+            if (m%has_expansion) then
+               call err_here(p, 'material '//m%name//' already has *EXPANSION')
+            else
+               m%expansion = alpha
+               m%has_expansion = .true.
+            end if
+         end associate
+      end if
+      call extra_lines(p, '*EXPANSION')
+   end subroutine read_expansion
+
+   !> OFFSET= of *SOLID SECTION (CalculiX: the offset of a shell or beam section's
+   !> reference surface, in units of the thickness): zero changes nothing for a
+   !> plane element and is accepted; any other value is out of scope.
+   subroutine check_offset(p, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(keyword_line_t), intent(in) :: kw
+      character(len=:), allocatable :: text
+      logical :: found
+      real(wp) :: offset
+      integer :: stat
+      call get_param(kw, 'OFFSET', text, found)
+      if (.not. found) return
+      ! the registry has checked that it is a finite number
+      call parse_real(squeeze(text), offset, stat)
+      if (stat == num_ok .and. abs(offset) > 0.0_wp) &
+         call err_here(p, '*SOLID SECTION, OFFSET='//text//' is not supported: vemcontact accepts '// &
+                       'OFFSET=0 only (plane elements have no offset reference surface)')
+   end subroutine check_offset
+
+   !> *SOLID SECTION, ELSET=, MATERIAL= [, FORMULATION=VEM|FEM] [, STABILIZATION=tau] [, OFFSET=0];
    !> data line: [thickness].  STABILIZATION (vemcontact) scales the VEM stabilisation;
    !> its use on FEM elements is refused once formulations are known (finish).
    subroutine read_section(p, model, kw)
@@ -171,6 +222,7 @@ contains
       call get_param(kw, 'MATERIAL', mat, found)
       call get_param(kw, 'FORMULATION', form, found)
       call get_param(kw, 'STABILIZATION', stab, has_stab)
+      call check_offset(p, kw)
       tau = 1.0_wp
       if (has_stab) then
          ! the registry has checked that it is a finite number

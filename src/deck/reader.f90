@@ -34,7 +34,8 @@ contains
          return
       end if
       call parse_lines(p, model)
-      call finish_model(p, model, p%src%path(1))
+      ! a refused deck is incomplete: its follow-on errors would only hide the one message
+      if (.not. p%refused) call finish_model(p, model, p%src%path(1))
       call p%diag%finish(error)
    end subroutine read_deck
 end module vemcontact_deck_reader

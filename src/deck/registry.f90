@@ -11,7 +11,7 @@ module vemcontact_deck_registry
 
    public :: keyword_spec_t, param_spec_t, keywords, params
    public :: find_keyword, find_param, keyword_suggestion, param_suggestion, known_keyword_list
-   public :: is_calculix_keyword, allowed_value, param_list
+   public :: is_calculix_keyword, allowed_value, param_list, out_of_scope_feature
 
    !> Keyword ids (index into `keywords`).
    integer, parameter, public :: kw_heading = 1, kw_include = 2, kw_node = 3, kw_element = 4, &
@@ -23,7 +23,10 @@ module vemcontact_deck_registry
                                  kw_geostatic = 22, kw_dsload = 23, kw_node_file = 24, kw_el_file = 25, &
                                  kw_contact_file = 26, kw_node_print = 27, kw_el_print = 28, &
                                  kw_contact_print = 29, kw_node_output = 30, kw_element_output = 31, &
-                                 kw_contact_output = 32, kw_output = 33, kw_uplift = 34
+                                 kw_contact_output = 32, kw_output = 33, kw_uplift = 34, kw_equation = 35, &
+                                 kw_part = 36, kw_end_part = 37, kw_assembly = 38, kw_end_assembly = 39, &
+                                 kw_instance = 40, kw_end_instance = 41, kw_preprint = 42, kw_restart = 43, &
+                                 kw_initial_conditions = 44, kw_temperature = 45, kw_expansion = 46, kw_tie = 47
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -55,7 +58,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(34) = [ &
+   type(keyword_spec_t), parameter :: keywords(47) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -89,9 +92,22 @@ module vemcontact_deck_registry
                                       keyword_spec_t('ELEMENT OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('CONTACT OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('OUTPUT', ctx_step, data_none), &
-                                      keyword_spec_t('UPLIFT', ctx_step, data_required)]
+                                      keyword_spec_t('UPLIFT', ctx_step, data_required), &
+                                      keyword_spec_t('EQUATION', ctx_model, data_required), &
+                                      keyword_spec_t('PART', ctx_model, data_none), &
+                                      keyword_spec_t('END PART', ctx_model, data_none), &
+                                      keyword_spec_t('ASSEMBLY', ctx_model, data_none), &
+                                      keyword_spec_t('END ASSEMBLY', ctx_model, data_none), &
+                                      keyword_spec_t('INSTANCE', ctx_model, data_optional), &
+                                      keyword_spec_t('END INSTANCE', ctx_model, data_none), &
+                                      keyword_spec_t('PREPRINT', ctx_model, data_none), &
+                                      keyword_spec_t('RESTART', ctx_any, data_none), &
+                                      keyword_spec_t('INITIAL CONDITIONS', ctx_model, data_required), &
+                                      keyword_spec_t('TEMPERATURE', ctx_step, data_required), &
+                                      keyword_spec_t('EXPANSION', ctx_model, data_required), &
+                                      keyword_spec_t('TIE', ctx_model, data_required)]
 
-   type(param_spec_t), parameter :: params(113) = [ &
+   type(param_spec_t), parameter :: params(146) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -107,6 +123,7 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_solid_section, 'FORMULATION', par_value, .false., val_name, 'VEM FEM'), &
                                     ! vemcontact: VEM stabilisation factor tau; positivity checked by the handler
                                     param_spec_t(kw_solid_section, 'STABILIZATION', par_value, .false., val_real, ''), &
+                                    param_spec_t(kw_solid_section, 'OFFSET', par_value, .false., val_real, ''), &
                                     param_spec_t(kw_boundary, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_cload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_dload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
@@ -211,19 +228,96 @@ module vemcontact_deck_registry
                                     ! *UPLIFT (vemcontact, src/deck/uplift.f90)
                                     param_spec_t(kw_uplift, 'INTERACTION', par_value, .true., val_name, ''), &
                                     param_spec_t(kw_uplift, 'UNIT WEIGHT', par_value, .true., val_real, ''), &
-                                    param_spec_t(kw_uplift, 'PENETRATION', par_flag, .false., val_name, '')]
+                                    param_spec_t(kw_uplift, 'PENETRATION', par_flag, .false., val_name, ''), &
+                                    ! Abaqus/CAE structure (src/deck/assembly.f90)
+                                    param_spec_t(kw_part, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_assembly, 'NAME', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_instance, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_instance, 'PART', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_nset, 'INSTANCE', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_elset, 'INSTANCE', par_value, .false., val_name, ''), &
+                                    ! accepted and ignored, with a note in the log
+                                    param_spec_t(kw_preprint, 'ECHO', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'MODEL', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'HISTORY', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'CONTACT', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'MASSPROP', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_preprint, 'PARSUBSTITUTION', par_value, .false., val_name, &
+                                                 'YES NO'), &
+                                    param_spec_t(kw_restart, 'WRITE', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'READ', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'FREQUENCY', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'NUMBER INTERVAL', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'OVERLAY', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'TIME MARKS', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'STEP', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_restart, 'INC', par_value, .false., val_name, ''), &
+                                    ! Abaqus/CAE writes it on every *ELEMENT OUTPUT: local directions (none in 2D)
+                                    param_spec_t(kw_element_output, 'DIRECTIONS', par_value, .false., val_name, 'YES NO'), &
+                                    ! thermal strains (src/deck/thermal.f90, *EXPANSION in src/deck/props.f90)
+                                    param_spec_t(kw_initial_conditions, 'TYPE', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_temperature, 'OP', par_value, .false., val_name, 'MOD NEW'), &
+                                    param_spec_t(kw_expansion, 'TYPE', par_value, .false., val_name, 'ISO'), &
+                                    param_spec_t(kw_expansion, 'ZERO', par_value, .false., val_real, ''), &
+                                    ! bonded surfaces (src/deck/tie.f90)
+                                    param_spec_t(kw_tie, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_tie, 'POSITION TOLERANCE', par_value, .false., val_real, ''), &
+                                    param_spec_t(kw_tie, 'ADJUST', par_value, .false., val_name, 'YES NO'), &
+                                    param_spec_t(kw_tie, 'TYPE', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_tie, 'CYCLIC SYMMETRY', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_tie, 'MULTISTAGE', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_tie, 'FLUID PRESSURE', par_flag, .false., val_name, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(29) = [character(len=24) :: &
+   character(len=24), parameter :: calculix_only(23) = [character(len=24) :: &
                                    'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
                                    'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', &
-                                   'VISCO', 'EQUATION', 'EXPANSION', 'FILM', 'FREQUENCY', &
-                                   'FRICTION', 'HEATTRANSFER', 'INITIALCONDITIONS', 'KINEMATIC', &
-                                   'MPC', 'ORIENTATION', 'PLASTIC', 'RESTART', 'SHELLSECTION', &
+                                   'VISCO', 'FILM', 'FREQUENCY', &
+                                   'FRICTION', 'HEATTRANSFER', 'KINEMATIC', &
+                                   'MPC', 'ORIENTATION', 'PLASTIC', 'SHELLSECTION', &
                                    'SPECIFICHEAT', &
-                                   'TEMPERATURE', 'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
+                                   'TIEPOINTS', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
+
+   !> CalculiX/Abaqus keywords of what vemcontact does not model at all (another
+   !> analysis, another kind of element or material law): the deck is refused at
+   !> the first of them with one message (out_of_scope_feature).  Squeezed names,
+   !> then what the message calls the feature.
+   character(len=28), parameter :: scope_names(30) = [character(len=28) :: &
+                                   'FREQUENCY', 'DYNAMIC', 'MODALDYNAMIC', 'STEADYSTATEDYNAMICS', &
+                                   'HEATTRANSFER', 'COUPLEDTEMPERATURE-DISPLACEMENT', 'BUCKLE', 'VISCO', &
+                                   'UNCOUPLEDTEMPERATURE-DISPLACEMENT', 'COMPLEXFREQUENCY', 'ELECTROMAGNETICS', &
+                                   'SENSITIVITY', 'GREEN', 'RIGIDBODY', 'PLASTIC', 'CREEP', 'HYPERELASTIC', &
+                                   'DEFORMATIONPLASTICITY', 'HYPERFOAM', 'USERMATERIAL', 'BEAMSECTION', &
+                                   'SHELLSECTION', 'MEMBRANESECTION', 'SPRING', 'DASHPOT', 'GAP', 'MASS', &
+                                   'CONDUCTIVITY', 'SPECIFICHEAT', 'FLUIDSECTION']
+   character(len=44), parameter :: scope_what(30) = [character(len=44) :: &
+                                   'a frequency step (*FREQUENCY)', 'a dynamic step (*DYNAMIC)', &
+                                   'a modal dynamic step (*MODAL DYNAMIC)', &
+                                   'a steady-state dynamics step', 'heat transfer (*HEAT TRANSFER)', &
+                                   'coupled temperature-displacement analysis', 'buckling (*BUCKLE)', &
+                                   'viscous creep steps (*VISCO)', 'temperature-displacement analysis', &
+                                   'complex frequency analysis', 'electromagnetics', 'sensitivity analysis', &
+                                   'Green function analysis', 'a rigid body (*RIGID BODY)', &
+                                   'plasticity (*PLASTIC)', 'creep (*CREEP)', 'hyperelasticity', &
+                                   'deformation plasticity', 'hyperfoam materials', 'a user material', &
+                                   'beam sections (*BEAM SECTION)', 'shell sections (*SHELL SECTION)', &
+                                   'membrane sections', 'spring elements (*SPRING)', 'dashpot elements', &
+                                   'gap elements (*GAP)', 'point masses (*MASS)', 'heat conduction (*CONDUCTIVITY)', &
+                                   'heat capacity (*SPECIFIC HEAT)', 'fluid sections']
 
 contains
+
+   !> What out-of-scope feature the keyword `name` (squeezed, upper case) stands
+   !> for, '' when it is not one of them.
+   pure function out_of_scope_feature(name) result(what)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: what
+      integer :: k
+      what = ''
+      do k = 1, size(scope_names)
+         if (trim(scope_names(k)) == name) what = trim(scope_what(k))
+      end do
+   end function out_of_scope_feature
 
    !> Id of the keyword with squeezed upper-case name `name` (e.g. 'SOLIDSECTION'), 0 if unknown.
    pure function find_keyword(name) result(id)

@@ -17,8 +17,8 @@ module vemcontact_deck_state
    implicit none
    private
 
-   public :: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, pair_ref_t
-   public :: here, err_here, err_at, warn_here, loc_str, field, get_int, get_id, get_real
+   public :: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, pair_ref_t, part_ref_t
+   public :: here, err_here, refuse_here, err_at, warn_here, loc_str, field, get_int, get_id, get_real
    public :: push_item, push_dof, push_dload, node_index, elem_index
    public :: get_set, set_suggestion, ref_kind, tidy_items
 
@@ -36,6 +36,9 @@ module vemcontact_deck_state
       type(dof_value_t), allocatable :: boundary(:), cload(:)
       type(dload_t), allocatable :: dload(:)
       type(uplift_t), allocatable :: uplift(:)   !< *UPLIFT (vemcontact)
+      type(dof_value_t), allocatable :: temperature(:)   !< *TEMPERATURE (or initial T0)
+      integer :: nt = 0
+      logical :: tnew = .false.
       integer :: nb = 0, nc = 0, nd = 0
       logical :: bnew = .false., cnew = .false., dnew = .false.  !< OP=NEW seen
       integer :: procedure = procedure_static
@@ -63,6 +66,16 @@ module vemcontact_deck_state
       type(source_loc_t) :: loc
    end type grav_ref_t
 
+   !> An Abaqus/CAE *PART, read into the model directly (vemcontact_deck_assembly):
+   !> its nodes first_node.., elements first_elem.., ids shifted by the offsets.
+   type :: part_ref_t
+      character(len=:), allocatable :: name       !< upper case
+      character(len=:), allocatable :: instance   !< its *INSTANCE name, '' until instanced
+      integer(ip) :: first_node = 1, last_node = 0, first_elem = 1, last_elem = 0
+      integer(ip) :: node_offset = 0, elem_offset = 0
+      type(source_loc_t) :: loc
+   end type part_ref_t
+
    type :: deck_parser_t
       type(deck_source_t) :: src
       type(diag_t) :: diag
@@ -72,12 +85,25 @@ module vemcontact_deck_state
       integer :: nnset = 0, nelset = 0, nmat = 0, nsec = 0, nstep = 0
       integer :: nsurf = 0, ninter = 0, npair = 0
       type(item_list_t), allocatable :: nset_items(:), elset_items(:), sec_items(:)
+      type(item_list_t) :: reduced            !< elements of the reduced-integration types (CPE8R/CPS8R)
       integer :: cur_mat = 0                !< material that *ELASTIC and *DENSITY apply to
       integer :: cur_inter = 0              !< interaction that *SURFACE BEHAVIOR applies to, -1 = dropped
       logical :: in_step = .false.
       logical :: procedure_seen = .false.   !< *STATIC or *GEOSTATIC in the current step
       logical :: section_errors = .false.   !< suppresses "no section" noise after a bad *SOLID SECTION
       logical :: element_errors = .false.   !< suppresses "no section" noise after a bad *ELEMENT
+      !> Abaqus/CAE structure: the parts read so far, the one being read (0 = none),
+      !> in_assembly between *ASSEMBLY and *END ASSEMBLY, in_instance likewise
+      type(part_ref_t), allocatable :: parts(:)
+      integer :: cur_part = 0
+      logical :: in_assembly = .false.
+      integer :: cur_instance = 0                !< part of the open *INSTANCE, 0 = none
+      !> added to the node and element ids of the data lines read now: a part's own
+      !> ids, or those of INSTANCE= on *NSET and *ELSET (0 elsewhere)
+      integer(ip) :: node_offset = 0, elem_offset = 0
+      !> the deck uses a feature outside vemcontact's scope (refuse_here): reading stops
+      !> there, so that its one message is not followed by the errors it would cause
+      logical :: refused = .false.
       type(source_loc_t) :: step_loc
       type(step_acc_t) :: init, cur
       type(grav_ref_t), allocatable :: grav(:)
@@ -105,6 +131,23 @@ contains
       character(len=*), intent(in), optional :: help
       call p%diag%report(p%src%path(), p%src%line, message, p%src%text(1:p%src%length), help)
    end subroutine err_here
+
+   !> Refuse the deck at the current line: `feature` (e.g. "axisymmetric element
+   !> type CAX8") is outside vemcontact's scope.  One message; the parser stops
+   !> reading, since the rest of the deck depends on what it cannot model.
+   subroutine refuse_here(p, feature, help)
+      type(deck_parser_t), intent(inout) :: p
+      character(len=*), intent(in) :: feature
+      character(len=*), intent(in), optional :: help
+      if (present(help)) then
+         call err_here(p, feature//' is outside vemcontact''s scope (linear static plane stress and plane '// &
+                       'strain); the deck is not read further', help)
+      else
+         call err_here(p, feature//' is outside vemcontact''s scope (linear static plane stress and plane '// &
+                       'strain); the deck is not read further', 'docs/deck-reference.md lists what is out of scope')
+      end if
+      p%refused = .true.
+   end subroutine refuse_here
 
    !> Record a warning at the current line: "file:line: warning: message".
    subroutine warn_here(p, message)
@@ -286,7 +329,7 @@ contains
       integer(ip), intent(in) :: id
       integer(ip) :: i
       if (p%node_map%n /= model%nnode) call p%node_map%build(model%node_id(1:model%nnode))
-      i = p%node_map%lookup(id)
+      i = p%node_map%lookup(id + p%node_offset)
    end function node_index
 
    !> Internal index of element id `id` among the elements read so far, 0 if undefined.
@@ -296,7 +339,7 @@ contains
       integer(ip), intent(in) :: id
       integer(ip) :: i
       if (p%elem_map%n /= model%nelem) call p%elem_map%build(model%elem_id(1:model%nelem))
-      i = p%elem_map%lookup(id)
+      i = p%elem_map%lookup(id + p%elem_offset)
    end function elem_index
 
    !> Index of set `name` in `sets(1:nsets)`, created (with `items`) if `create` and absent.

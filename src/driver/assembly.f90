@@ -8,6 +8,7 @@ module vemcontact_driver_assembly
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_material_elastic, only: elastic_matrix, out_of_plane_stress
+   use vemcontact_driver_thermal, only: thermal_stress, thermal_strain, add_thermal_body
    use vemcontact_element, only: element_stiffness, element_stress, element_body_load, &
                                  element_workspace_size
    implicit none
@@ -52,7 +53,7 @@ contains
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
          end associate
          call element_stiffness(model%elem_form(e), xy(:, :n), d, model%elem_thick(e), ke(:2*n, :2*n), &
-                                work, info, stab(model, e), element_order(model%elem_type(e)))
+                                work, info, stab(model, e), element_order(model%elem_type(e)), reduced(model, e))
          if (info /= 0) then
             nerr = nerr + 1
             write (buf, '(i0)') model%elem_id(e)
@@ -150,6 +151,14 @@ contains
       stab = 1.0_wp
       if (allocated(model%elem_stab)) stab = model%elem_stab(e)
    end function stab
+
+   !> Whether the element has reduced integration (false when the model has no such flags).
+   pure logical function reduced(model, e)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: e
+      reduced = .false.
+      if (allocated(model%elem_reduced)) reduced = model%elem_reduced(e)
+   end function reduced
 
    !> Consistent nodal forces per unit thickness, fs(:, i) for the side's nodes
    !> xs(:, 1) (start corner), xs(:, 2) (end corner), xs(:, 3) (middle node), of
@@ -281,12 +290,15 @@ contains
    !> the body force among them.
    !> `s_at` (optional, (4, size of elem_conn)): each element's stress at each
    !> of its nodes (element_stress's signode), for nodal_average.
-   subroutine element_stresses(model, u, s_elem, dloads, s_at)
+   !> `dtemp` (optional, (nnode)): the temperature changes T - T0; the stresses are
+   !> then D (E - thermal strain) (vemcontact_driver_thermal).
+   subroutine element_stresses(model, u, s_elem, dloads, s_at, dtemp)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:)
       real(wp), intent(out) :: s_elem(:, :)
       type(dload_t), intent(in), optional :: dloads(:)
       real(wp), intent(out), optional :: s_at(:, :)
+      real(wp), intent(in), optional :: dtemp(:)
       real(wp), allocatable :: xy(:, :), ue(:), work(:), body(:, :), sn(:, :)
       real(wp) :: d(3, 3), sig(3)
       integer :: e, n, i, nmax
@@ -294,6 +306,7 @@ contains
       nmax = max_element_nodes(model)
       allocate (xy(2, nmax), ue(2*nmax), work(element_workspace_size(nmax)), sn(3, nmax))
       body = element_body_forces(model, dloads)
+      if (present(dtemp)) call add_thermal_body(model, dtemp, body)
       do e = 1, model%nelem
          first = model%elem_ptr(e)
          call gather_element(model, u, e, xy, ue, n)
@@ -301,7 +314,7 @@ contains
             call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
             call element_stress(model%elem_form(e), xy(:, :n), d, ue(:2*n), work, sig, &
                                 element_order(model%elem_type(e)), model%elem_thick(e), stab(model, e), body(:, e), &
-                                sn(:, :n))
+                                sn(:, :n), reduced(model, e))
             s_elem(:, e) = [sig(1), sig(2), out_of_plane_stress(mat%poisson, model%elem_plane(e), sig(1), sig(2)), sig(3)]
             if (present(s_at)) then
                do i = 1, n
@@ -312,6 +325,7 @@ contains
             end if
          end associate
       end do
+      if (present(dtemp)) call thermal_stress(model, dtemp, s_elem, s_at)
    end subroutine element_stresses
 
    !> The coordinates xy(:, :n) and displacements ue(:2n) of the n nodes of element e,
@@ -358,12 +372,15 @@ contains
    !> -nu/(1 - nu) (xx + yy) that makes S_zz zero.
    !> `s_at`, `e_at` (optional, (4, size of elem_conn)): each element's stress and
    !> strain at each of its nodes (element_stresses' s_at), for nodal_average.
-   pure subroutine element_strains(model, s_elem, e_elem, s_at, e_at)
+   !> `dtemp` (optional): with thermal strains, D^-1 S is the mechanical strain and
+   !> the thermal strain is added to give the total.
+   pure subroutine element_strains(model, s_elem, e_elem, s_at, e_at, dtemp)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: s_elem(:, :)
       real(wp), intent(out) :: e_elem(:, :)
       real(wp), intent(in), optional :: s_at(:, :)
       real(wp), intent(out), optional :: e_at(:, :)
+      real(wp), intent(in), optional :: dtemp(:)
       real(wp) :: d(3, 3)
       integer :: e
       integer(ip) :: k
@@ -378,6 +395,7 @@ contains
             end if
          end associate
       end do
+      if (present(dtemp)) call thermal_strain(model, dtemp, e_elem, e_at)
    end subroutine element_strains
 
    !> The strain (xx, yy, gamma_xy) whose stress under the elastic matrix d is sig:

@@ -40,6 +40,9 @@ module vemcontact_driver_linear
    use vemcontact_driver_penetration, only: solve_with_uplift
    use vemcontact_contact_rules, only: matrix_key_t
    use vemcontact_contact_search, only: merge_node_pairs
+   use vemcontact_driver_thermal, only: add_thermal_forces
+   use vemcontact_driver_equations, only: constraint_set_t, resolve_equations, equation_graph, &
+                                          eliminate_equations, transform_loads, recover_dependent, dependent_dofs
    use vemcontact_sparse_matvec, only: sym_matvec
    use vemcontact_log, only: logger_t
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -85,6 +88,8 @@ module vemcontact_driver_linear
       logical :: fallback = .false.
       !> a fallback to CHOLMOD happened (the log and the results name the solver that ran)
       logical :: fell_back = .false.
+      !> the *EQUATION constraints, resolved; `k` holds T^T K T (vemcontact_driver_equations)
+      type(constraint_set_t) :: cs
    contains
       procedure :: setup
       procedure :: solve_state
@@ -96,6 +101,7 @@ module vemcontact_driver_linear
       procedure :: solve_system
       procedure :: elastic_times
       procedure :: largest_elastic_diagonal
+      procedure :: reduce_loads
       procedure, private :: constrain
       procedure, private :: solve_linear
    end type linear_system_t
@@ -137,6 +143,13 @@ contains
       if (allocated(error)) return
       self%dist = self%solver%processes > 1
       self%solver%shares = self%dist
+      call resolve_equations(model, self%cs, error)
+      if (allocated(error)) return
+      if (self%dist .and. self%cs%n > 0) then
+         call fatal_error(error, 'error: *EQUATION constraints are eliminated on one process only: '// &
+                          'run this deck without mpirun', err_solver)
+         return
+      end if
       allocate (u0(2*model%nnode), source=0.0_wp)
       call self%build_system(model, error, contact, u0)
    end subroutine setup
@@ -155,6 +168,7 @@ contains
       real(wp), allocatable :: kdiag(:)
       type(error_t), allocatable :: err2
       integer(ip) :: j
+      logical :: ok
 
       t0 = wall_time()
       self%t_candidates = 0
@@ -181,6 +195,8 @@ contains
             call move_alloc(adj2, adj)
          end if
       end if
+      call equation_graph(model%nnode, self%cs, adj_ptr, adj, error)
+      if (allocated(error)) return
       call build_pattern(model%nnode, adj_ptr, adj, self%k)
       self%pattern_builds = self%pattern_builds + 1
       self%t_pattern = wall_time() - t0
@@ -207,6 +223,13 @@ contains
          self%kmax_whole = max(0.0_wp, maxval(abs(kdiag)))
       else
          call assemble_stiffness(model, self%k, error)
+         if (allocated(error)) return
+         call eliminate_equations(self%cs, self%k, adj_ptr, adj, ok)
+         if (.not. ok) then
+            call fatal_error(error, 'internal error: an *EQUATION coupling is outside the matrix pattern', &
+                             err_solver)
+            return
+         end if
       end if
       if (allocated(error)) return
       self%t_assemble = wall_time() - t0
@@ -266,16 +289,22 @@ contains
       ! nodes of no element carry nothing: hold them so the matrix stays regular
       fixed(1::2) = fixed(1::2) .or. self%unused
       fixed(2::2) = fixed(2::2) .or. self%unused
+      ! the dependent dofs of *EQUATION are eliminated: held at 0, recovered after the solve
+      fixed = fixed .or. dependent_dofs(self%cs, size(fixed))
       allocate (f(size(u)))
       call assemble_loads(model, st%force, st%dload, f)
+      if (allocated(st%dtemp)) call add_thermal_forces(model, st%dtemp, f)
+      call transform_loads(self%cs, f)
       if (present(contact)) then
          if (contact%n > 0) then
             call solve_with_uplift(self, model, st%uplift, fixed, st%prescribed, f, u, contact, error, log)
+            if (.not. allocated(error)) call recover_dependent(self%cs, u)
             return
          end if
       end if
       if (self%fallback .and. .not. self%dist) f0 = f
       call self%solve_linear(model, st, fixed, f, u, error, log)
+      if (.not. allocated(error)) call recover_dependent(self%cs, u)
       if (.not. allocated(error) .or. .not. allocated(f0)) return
       if (error%code /= err_solver) return
       ! the iterative solver `auto` chose failed (CG did not converge, or its set-up
@@ -297,10 +326,13 @@ contains
       ! the assembled stiffness and its pattern stay: a new analysis for the new solver
       call node_graph_from_elements(model%nnode, model%elem_ptr, model%elem_conn, adj_ptr, adj, error)
       if (allocated(error)) return
+      call equation_graph(model%nnode, self%cs, adj_ptr, adj, error)
+      if (allocated(error)) return
       call self%analyze_system(model, adj_ptr, adj, error)
       if (allocated(error)) return
       f = f0
       call self%solve_linear(model, st, fixed, f, u, error, log)
+      if (.not. allocated(error)) call recover_dependent(self%cs, u)
    end subroutine solve_state
 
    !> solve_state without contact: constraints, a factorization when the fixed dofs
@@ -464,6 +496,14 @@ contains
       ! should one return, K u is marked not finite rather than left a share
       if (allocated(error)) ku = ieee_value(1.0_wp, ieee_quiet_nan)
    end subroutine elastic_times
+
+   !> f <- T^T f, the loads of the system `k` holds (with *EQUATION eliminated), for
+   !> the reactions K u - f.
+   pure subroutine reduce_loads(self, f)
+      class(linear_system_t), intent(in) :: self
+      real(wp), intent(inout) :: f(:)
+      call transform_loads(self%cs, f)
+   end subroutine reduce_loads
 
    real(wp) function largest_elastic_diagonal(self) result(kmax)
       class(linear_system_t), intent(in) :: self

@@ -24,6 +24,8 @@ module vemcontact_driver_load_state
       logical, allocatable :: base_fixed(:)   !< model-definition constraints
       real(wp), allocatable :: base_value(:)
       integer, allocatable :: base_amp(:)
+      !> (nnode) temperatures: T0 (*INITIAL CONDITIONS), T in force, and dT = T - T0
+      real(wp), allocatable :: temp0(:), temp(:), dtemp(:)
    end type load_state_t
 
 contains
@@ -44,6 +46,10 @@ contains
       st%base_fixed = st%fixed
       st%base_value = st%prescribed
       st%base_amp = st%fixed_amp
+      allocate (st%temp0(model%nnode), source=0.0_wp)
+      if (allocated(model%initial%temperature)) call set_values(model%initial%temperature, st%temp0)
+      st%temp = st%temp0
+      st%dtemp = st%temp - st%temp0
    end subroutine init_load_state
 
    !> Apply the entries of `step` to the state left by the previous step.
@@ -71,6 +77,11 @@ contains
       end if
       if (allocated(step%dload)) call merge_dloads(st%dload, step%dload)
       if (allocated(step%uplift)) call merge_uplift(st%uplift, step%uplift)
+      if (allocated(st%temp)) then
+         if (step%temperature_new) st%temp = st%temp0
+         if (allocated(step%temperature)) call set_values(step%temperature, st%temp)
+         st%dtemp = st%temp - st%temp0
+      end if
    end subroutine advance_load_state
 
    !> A step's *UPLIFT replaces the one in force on the same interaction.
@@ -90,6 +101,16 @@ contains
          if (.not. replaced) old = [old, new(k)]
       end do
    end subroutine merge_uplift
+
+   !> Nodal values (temperatures) of the listed nodes, the last entry for a node winning.
+   pure subroutine set_values(entries, value)
+      type(dof_value_t), intent(in) :: entries(:)
+      real(wp), intent(inout) :: value(:)
+      integer :: k
+      do k = 1, size(entries)
+         value(entries(k)%node) = entries(k)%value
+      end do
+   end subroutine set_values
 
    !> Set the value of each listed dof, the last entry for a dof winning.
    pure subroutine set_dofs(entries, flag, value, amp)

@@ -29,6 +29,7 @@ module vemcontact_driver_static
    use vemcontact_post_estimate, only: error_estimate_t, estimate_error
    use vemcontact_post_estimate2, only: estimate_error2
    use vemcontact_post_reactions, only: reaction_forces, constrained_sets
+   use vemcontact_driver_thermal, only: add_thermal_forces
    use vemcontact_post_labels, only: element_section_sets, element_parts
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
    use vemcontact_output_pvd, only: pvd_list_t, pvd_rewrite_due
@@ -528,14 +529,14 @@ contains
          ! element values; strains E = D^-1 S from the same recovery
          ! (element_strains)
          if (allocated(r%s_at)) then
-            call element_stresses(model, rs%u, r%s_elem, st%dload, r%s_at)
+            call element_stresses(model, rs%u, r%s_elem, st%dload, r%s_at, st%dtemp)
             call nodal_average(model, r%s_elem, r%s_node, r%s_at)
-            call element_strains(model, r%s_elem, r%extra%e_elem, r%s_at, r%e_at)
+            call element_strains(model, r%s_elem, r%extra%e_elem, r%s_at, r%e_at, st%dtemp)
             call nodal_average(model, r%extra%e_elem, r%extra%e_node, r%e_at)
          else
-            call element_stresses(model, rs%u, r%s_elem, st%dload)
+            call element_stresses(model, rs%u, r%s_elem, st%dload, dtemp=st%dtemp)
             call nodal_average(model, r%s_elem, r%s_node)
-            call element_strains(model, r%s_elem, r%extra%e_elem)
+            call element_strains(model, r%s_elem, r%extra%e_elem, dtemp=st%dtemp)
             call nodal_average(model, r%extra%e_elem, r%extra%e_node)
          end if
          call log%lap('stresses')
@@ -551,9 +552,12 @@ contains
          ! reactions: the force the supports exert, K u - f_ext - f_contact at the
          ! constrained dofs with the loads in force (a constrained slave or master node
          ! also takes its contact force: the support carries the rest); contact%forces
-         ! adds -f_contact, the contact springs' pull -N A^T n
+         ! adds -f_contact, the contact springs' pull -N A^T n; thermal strains add their
+         ! (self-equilibrated) forces; K u is that of the system with *EQUATION eliminated
          ! (docs/output-format.md, "Reaction forces")
          call assemble_loads(model, st%force, st%dload, r%f)
+         call add_thermal_forces(model, st%dtemp, r%f)
+         call rs%sys%reduce_loads(r%f)
          if (rs%contact%n > 0) then
             allocate (fc(size(r%f)), source=0.0_wp)
             call rs%contact%forces(fc)

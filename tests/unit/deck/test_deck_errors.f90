@@ -52,10 +52,19 @@ program test_deck_errors
    call expect('id_real', rep(3, '2.5, 1., 0.'), 3, 'node id must be an integer, found ''2.5''')
    call expect('id_zero', rep(3, '0, 1., 0.'), 3, 'node id 0 must be a positive integer')
    call expect('node_z', rep(3, '2, 1., 0., 0.5'), 3, 'node 2 has z = 0.5')
-   call expect('node_fields', rep(3, '2, 1., 0., 0., 7.'), 3, 'too many fields on a *NODE data line')
+   call expect('node_fields', rep(3, '2, 1., 0., 0., x7'), 3, 'field 5 of a *NODE line (id, x, y, z) must be a number')
    call expect('dup_node', ins(5, '2, 5., 5.'), 6, 'duplicate node id 2 (first defined at')
    ! elements
-   call expect('elem_type', rep(6, '*ELEMENT, TYPE=C3D8, ELSET=E'), 6, 'unsupported element type C3D8')
+   call expect('elem_type', rep(6, '*ELEMENT, TYPE=CPE44, ELSET=E'), 6, 'unsupported element type CPE44')
+   call expect('elem_scope', rep(6, '*ELEMENT, TYPE=C3D8, ELSET=E'), 6, &
+               'element type C3D8 (three-dimensional solid) is outside vemcontact''s scope')
+   call expect('elem_axi', rep(6, '*ELEMENT, TYPE=CAX4, ELSET=E'), 6, 'element type CAX4 (axisymmetric) is outside')
+   call expect('freq_scope', rep(15, '*FREQUENCY'), 15, 'a frequency step (*FREQUENCY) is outside')
+   call expect('heat_scope', rep(15, '*HEAT TRANSFER'), 15, 'heat transfer (*HEAT TRANSFER) is outside')
+   ! a refusal is one message: the element set E it leaves undefined, the section and
+   ! the loads on its nodes would each give a follow-on error
+   call expect_one('elem_scope_one', rep(6, '*ELEMENT, TYPE=CAX4, ELSET=E'))
+   call expect_one('nlgeom_one', rep(14, '*STEP, NLGEOM'))
    call expect('elem_count', rep(7, '1, 1, 2, 3'), 7, 'element 1 of type CPE4 needs 4 nodes, found 3')
    call expect('poly_count', [character(len=w) :: base(1:5), line('*ELEMENT, TYPE=VPE, ELSET=P'), line('9, 1, 2'), base(6:)], 7, &
                'element 9 of type VPE needs at least 3 nodes, found 2')
@@ -105,7 +114,8 @@ program test_deck_errors
    call expect('grav_zero', ins(17, '*DLOAD'//achar(10)//'E, GRAV, 9.81, 0., 0.'), 19, 'gravity direction (dx, dy) is zero')
    call expect('grav_z', ins(17, '*DLOAD'//achar(10)//'E, GRAV, 9.81, 0., -1., 1.'), 19, &
                'gravity direction has a z component')
-   call expect('nlgeom', rep(14, '*STEP, NLGEOM=YES'), 14, 'NLGEOM (geometric nonlinearity) is not supported')
+   call expect('bc_type', rep(13, '1, FIXED'), 13, 'unknown boundary type FIXED')
+   call expect('nlgeom', rep(14, '*STEP, NLGEOM=YES'), 14, 'NLGEOM (geometric nonlinearity) is outside')
    call expect('inc', rep(14, '*STEP, INC=-3'), 14, 'parameter INC of *STEP must be a positive integer')
    call expect('node_in_step', ins(15, '*NODE'//achar(10)//'9, 0., 0.'), 16, '*NODE is not allowed inside a *STEP')
    call expect('no_static', rep(15, '** no static'), 14, 'the step has no procedure')
@@ -204,6 +214,30 @@ contains
          print '(a)', e%message
       end if
    end subroutine expect
+
+   !> Exactly one error message (a refused deck).
+   subroutine expect_one(name, lines)
+      character(len=*), intent(in) :: name
+      character(len=w), intent(in) :: lines(:)
+      character(len=:), allocatable :: p
+      type(model_t) :: mm
+      type(error_t), allocatable :: e
+      integer :: n, at, k
+      p = write_deck(name, lines)
+      call read_deck(p, mm, e)
+      call t%check(allocated(e), name//': error returned')
+      if (.not. allocated(e)) return
+      n = 0
+      at = 1
+      do
+         k = index(e%message(at:), ': error: ')
+         if (k == 0) exit
+         n = n + 1
+         at = at + k + 8
+      end do
+      call t%check(n == 1, name//': exactly one error message')
+      if (n /= 1) print '(a)', e%message
+   end subroutine expect_one
 
    !> Errors about the deck as a whole: "<path>: error: ...".
    subroutine expect_noline(name, lines, phrase)
