@@ -65,7 +65,7 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
     for i in range(nx):
         elems.append((e0 + 1 + i, base0 + 1 + i, base0 + 2 + i, base0 + nx + 3 + i, base0 + nx + 2 + i))
     L = ["*HEADING", "block on a rigid base with water in the joint", "*NODE"]
-    L += [f"{n}, {x!r}, {y!r}" for n, x, y in nodes]
+    L += [f"{n}, {float(x)!r}, {float(y)!r}" for n, x, y in nodes]
     L += [f"*ELEMENT, TYPE={etype}, ELSET=BLOCK"] + [", ".join(map(str, e)) for e in elems[:e0]]
     L += [f"*ELEMENT, TYPE={etype}, ELSET=BASE"] + [", ".join(map(str, e)) for e in elems[e0:]]
     L += ["*NSET, NSET=BASENODES"] + [str(base0 + 1 + k) for k in range(2 * nx + 2)]
@@ -75,22 +75,22 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
     if water is not None:
         rows = [j for j in range(ny) if (j + 1) * (p[3][1] / ny) <= water + 1e-9]
         L += ["*SURFACE, NAME=UPSTREAM, TYPE=ELEMENT"] + [f"{1 + j * nx}, S4" for j in rows]
-    L += ["*MATERIAL, NAME=CONCRETE", "*ELASTIC", f"{young!r}, 0.2", "*DENSITY", f"{RHO!r}",
+    L += ["*MATERIAL, NAME=CONCRETE", "*ELASTIC", f"{float(young)!r}, 0.2", "*DENSITY", f"{float(RHO)!r}",
           "*SOLID SECTION, ELSET=BLOCK, MATERIAL=CONCRETE", "1.0",
           "*SOLID SECTION, ELSET=BASE, MATERIAL=CONCRETE", "1.0",
           "*SURFACE INTERACTION, NAME=JOINT"]
     if hard:
         L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD"]
     else:
-        L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{penalty!r}"]
+        L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{float(penalty)!r}"]
     L += [f"*CONTACT PAIR, INTERACTION=JOINT, TYPE={pair}", "SLAVE, MASTER",
           "*BOUNDARY", "BASENODES, 1, 2", "FOOT, 1"]
-    step = ["*STEP", "*STATIC", "*DLOAD", f"BLOCK, GRAV, {G!r}, 0., -1."]
+    step = ["*STEP", "*STATIC", "*DLOAD", f"BLOCK, GRAV, {float(G)!r}, 0., -1."]
     if two_steps:
         L += step + ["*END STEP"]
         step = ["*STEP", "*STATIC"]
     if water is not None:
-        step += ["*DSLOAD", f"UPSTREAM, HP, {GW * water!r}, {water!r}, 0."]
+        step += ["*DSLOAD", f"UPSTREAM, HP, {float(GW * water)!r}, {float(water)!r}, 0."]
     if uplift is not None:
         step += [uplift]
     if extra is not None:
