@@ -171,7 +171,19 @@ def main() -> int:
         problems = []
         if p.returncode != 128 + sig:
             problems.append(f"exit status {p.returncode}, expected {128 + sig}: {err}")
-        attrs, steps = h5_steps(os.path.join(out, job + ".h5"))
+        h5 = os.path.join(out, job + ".h5")
+        if not os.path.exists(h5):
+            # stopped before the results files were opened (an MPI start can take longer
+            # than the serial reference run): nothing finished, so nothing is kept
+            with open(os.path.join(out, job + ".log")) as f:
+                if "no step was complete" not in f.read():
+                    problems.append("no JOB.h5, and the log does not say that no step was complete")
+            print(f"trial {trial}: {sig.name}, exit {p.returncode}, stopped before the results files")
+            for msg in problems:
+                print(f"FAIL: trial {trial}: {msg}")
+            failures += bool(problems)
+            continue
+        attrs, steps = h5_steps(h5)
         if attrs.get("complete") != 0 or attrs.get("interrupted") != sig:
             problems.append(f"root attributes {attrs}, expected complete 0, interrupted {int(sig)}")
         k = len(steps)
