@@ -28,7 +28,7 @@ def by_coordinates(h5):
 
 
 def flat_deck(nodes, elements, rest):
-    lines = ["*NODE"] + [f"{i}, {x!r}, {y!r}" for i, (x, y) in nodes.items()]
+    lines = ["*NODE"] + [f"{i}, {float(x)!r}, {float(y)!r}" for i, (x, y) in nodes.items()]
     for etype, elset, conn in elements:
         lines.append(f"*ELEMENT, TYPE={etype}, ELSET={elset}")
         lines += [", ".join(str(v) for v in c) for c in conn]

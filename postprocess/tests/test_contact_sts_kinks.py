@@ -153,7 +153,7 @@ def errors(cpress, status, s):
 def laws():
     yield "HARD", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD"
     for khe in (1e0, 1e4, 1e8):
-        yield khe, f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{khe * E / H!r}"
+        yield khe, f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{float(khe * E / H)!r}"
 
 
 @pytest.mark.parametrize("slave", ["UPPER", "LOWER"])
@@ -194,7 +194,7 @@ def test_patch_second_order(exe, tmp_path, shape, slave):
     if shape != "arc":
         k = 1e4 * E / H
         ec, es = errors(*run(exe, deck(tmp_path, include, ids,
-                                       f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{k!r}", name="lin")))
+                                       f"*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{float(k)!r}", name="lin")))
         assert max(ec, es) <= 1e-8, (ec, es)
 
 
