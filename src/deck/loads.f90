@@ -181,9 +181,9 @@ contains
          do i = 1, nodes%n
             do dof = dof1, min(int(dof2), 2)
                if (p%in_step) then
-                  call push_dof(p%cur%boundary, p%cur%nb, dof_value_t(nodes%a(i), dof, val))
+                  call push_dof(p%cur%boundary, p%cur%nb, dof_value_t(nodes%a(i), dof, val, p%amp))
                else
-                  call push_dof(p%init%boundary, p%init%nb, dof_value_t(nodes%a(i), dof, val))
+                  call push_dof(p%init%boundary, p%init%nb, dof_value_t(nodes%a(i), dof, val, p%amp))
                end if
             end do
          end do
@@ -244,7 +244,7 @@ contains
             cycle
          end if
          do i = 1, nodes%n
-            call push_dof(p%cur%cload, p%cur%nc, dof_value_t(nodes%a(i), int(dof), val))
+            call push_dof(p%cur%cload, p%cur%nc, dof_value_t(nodes%a(i), int(dof), val, p%amp))
          end do
       end do
    end subroutine read_cload
@@ -300,6 +300,7 @@ contains
             rec = dload_t(kind=dload_grav, side=0, magnitude=mag, dir=d(1:2)/dnorm)
             do i = 1, elems%n
                rec%elem = elems%a(i)
+               rec%amp = p%amp
                call push_dload(p%cur%dload, p%cur%nd, rec)
                call add_grav(p, elems%a(i))
             end do
@@ -333,6 +334,7 @@ contains
             rec = dload_t(kind=dload_hydrostatic, side=side, magnitude=mag, dir=[yzero, yref])
             do i = 1, elems%n
                rec%elem = elems%a(i)
+               rec%amp = p%amp
                call push_dload(p%cur%dload, p%cur%nd, rec)
             end do
          else if (len(label) >= 2 .and. index(label, 'P') == 1) then   ! index: safe on an empty label
@@ -352,6 +354,7 @@ contains
             rec = dload_t(kind=dload_pressure, side=side, magnitude=mag, dir=0.0_wp)
             do i = 1, elems%n
                rec%elem = elems%a(i)
+               rec%amp = p%amp
                call push_dload(p%cur%dload, p%cur%nd, rec)
             end do
          else

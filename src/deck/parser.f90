@@ -16,13 +16,14 @@ module vemcontact_deck_parser
                                        kw_contact_pair, kw_contact_controls, kw_geostatic, kw_dsload, &
                                        kw_node_file, kw_el_file, kw_contact_file, kw_node_print, kw_el_print, &
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
-                                       kw_output
+                                       kw_output, kw_amplitude
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
    use vemcontact_deck_loads, only: read_heading, read_boundary, read_cload, read_dload, start_step, &
                                     read_procedure, end_step
    use vemcontact_deck_surface_loads, only: read_dsload
+   use vemcontact_deck_amplitude, only: read_amplitude, load_amplitude
    use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
                                       read_contact_pair, read_controls
@@ -100,11 +101,19 @@ contains
          case (kw_solid_section)
             call read_section(p, model, kw)
          case (kw_boundary)
+            call load_amplitude(p, model, kw, '*BOUNDARY')
             call read_boundary(p, model, kw)
+            p%amp = 0
          case (kw_cload)
+            call load_amplitude(p, model, kw, '*CLOAD')
             call read_cload(p, model, kw)
+            p%amp = 0
          case (kw_dload)
+            call load_amplitude(p, model, kw, '*DLOAD')
             call read_dload(p, model, kw)
+            p%amp = 0
+         case (kw_amplitude)
+            call read_amplitude(p, model, kw)
          case (kw_step)
             call start_step(p, model, kw)
             call no_data(p, '*STEP')
@@ -113,7 +122,9 @@ contains
          case (kw_geostatic)
             call read_procedure(p, .true., model, kw)
          case (kw_dsload)
+            call load_amplitude(p, model, kw, '*DSLOAD')
             call read_dsload(p, model, kw)
+            p%amp = 0
          case (kw_surface)
             call read_surface(p, model, kw)
          case (kw_surface_interaction)

@@ -50,8 +50,12 @@ module vemcontact_output_hdf5
       character(len=:), allocatable :: tmp
       !> sizes of the mesh written, to check the steps against; -1 before write_mesh
       integer(ip) :: nnode = -1, nelem = -1
+      !> 0: the results written go to the step's group /steps/NNNN; m > 0: to the
+      !> frame of increment m, /increments/NNNN/MMMM (set_increment)
+      integer :: frame = 0
    contains
       procedure :: open => h5_open
+      procedure :: set_increment => h5_set_increment
       procedure :: write_mesh => h5_write_mesh
       procedure :: write_step => h5_write_step
       procedure :: write_contact => h5_write_contact
@@ -228,7 +232,12 @@ contains
          call fatal_error(error, 'write_step: negative step index ('//self%path//')', err_internal)
          return
       end if
-      gname = step_group(istep)
+      gname = result_group(self, istep)
+      if (self%frame > 0) then
+         call ensure_group(self, '/increments', error)
+         if (.not. allocated(error)) call ensure_group(self, gname(1:index(gname, '/', back=.true.) - 1), error)
+         if (allocated(error)) return
+      end if
       call h5gcreate_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'creating group '//gname, error)) return
       call put_string_attribute(self, grp, 'name', name, error)
@@ -428,7 +437,7 @@ contains
                           self%path//')', err_internal)
          return
       end if
-      gname = step_group(istep)
+      gname = result_group(self, istep)
       call h5gopen_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'opening group '//gname, error)) return
       if (w%e) call put_real(self, grp, 'E_element', shape(e_elem, hsize_t), e_elem, error)
@@ -477,7 +486,18 @@ contains
       integer(hid_t) :: grp
       integer :: hdferr
       logical :: exists
-      gname = step_group(istep)//'/contact'
+      gname = result_group(self, istep)//'/contact'
+      call ensure_group(self, gname, error)
+   end subroutine contact_group
+
+   !> Create the group `gname` (its parent must exist) unless it exists.
+   subroutine ensure_group(self, gname, error)
+      class(h5_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: gname
+      type(error_t), allocatable, intent(out) :: error
+      integer(hid_t) :: grp
+      integer :: hdferr
+      logical :: exists
       call h5lexists_f(self%file, gname, exists, hdferr)
       if (failed(self, hdferr, 'looking up '//gname, error)) return
       if (.not. exists) then
@@ -486,7 +506,32 @@ contains
          call h5gclose_f(grp, hdferr)
          if (failed(self, hdferr, 'closing group '//gname, error)) return
       end if
-   end subroutine contact_group
+   end subroutine ensure_group
+
+   !> Where the results of step istep go: /steps/NNNN, or the frame of the increment
+   !> set by set_increment, /increments/NNNN/MMMM (four digits each, more when needed).
+   pure function result_group(self, istep) result(gname)
+      class(h5_writer_t), intent(in) :: self
+      integer, intent(in) :: istep
+      character(len=:), allocatable :: gname
+      character(len=24) :: buf
+      gname = step_group(istep)
+      if (self%frame <= 0) return
+      if (self%frame <= 9999) then
+         write (buf, '(i4.4)') self%frame
+      else
+         write (buf, '(i0)') self%frame
+      end if
+      gname = '/increments/'//gname(len('/steps/') + 1:)//'/'//trim(buf)
+   end function result_group
+
+   !> The results written next are those of increment m of the step (m > 0: the
+   !> frame /increments/NNNN/MMMM), or of the end of the step (m = 0: /steps/NNNN).
+   subroutine h5_set_increment(self, m)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: m
+      self%frame = m
+   end subroutine h5_set_increment
 
    !> Remove /steps/NNNN if it exists: a step that failed part way, so that the
    !> file lists only steps complete in every results file.
