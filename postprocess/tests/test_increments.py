@@ -216,3 +216,28 @@ def test_direct_not_dividing_is_warned(exe, tmp_path):
     assert r.returncode == 0, r.stderr
     assert "warning: the fixed increment 0.3 does not divide the step time 1.: the last increment is shorter" \
         in r.stdout + r.stderr
+
+
+def test_failed_run_pvd_lists_every_completed_step(exe, tmp_path):
+    """The .pvd is rewritten after steps 1, 2, 4, ...; a run that fails in step 4 still
+    leaves a .pvd of steps 1-3 (written when it stops), and JOB.h5 the same steps."""
+    text = open(os.path.join(ROOT, "tests", "integration", "decks", "fails_in_step2.inp")).read()
+    head, _, rest = text.partition("*STEP")
+    good, _, bad = ("*STEP" + rest).partition("*END STEP\n")
+    good += "*END STEP\n"
+    h5, _ = run(exe, tmp_path, head + good * 3 + bad, code=3)
+    pvd = open(h5.with_suffix(".pvd")).read()
+    assert re.findall(r'file="([^"]+)"', pvd) == ["job_0001.vtu", "job_0002.vtu", "job_0003.vtu"]
+    with h5py.File(h5) as f:
+        assert f.attrs["complete"] == 0
+        assert sorted(f["steps"]) == ["0001", "0002", "0003"]
+
+
+def test_rerun_removes_increment_files(exe, tmp_path):
+    """A rerun starts clean: the increments' .vtu of the previous run are removed."""
+    run(exe, tmp_path, deck(", DIRECT\n0.25, 1.", freq=", FREQUENCY=1"))
+    out = tmp_path / "out_job"
+    assert (out / "job_0001_0002.vtu").exists()
+    run(exe, tmp_path, deck())
+    assert not list(out.glob("job_*_*.vtu"))
+    assert (out / "job_0001.vtu").exists() and (out / "job_0002.vtu").exists()

@@ -56,6 +56,7 @@ module vemcontact_output_hdf5
    contains
       procedure :: open => h5_open
       procedure :: set_increment => h5_set_increment
+      procedure :: flush => h5_flush
       procedure :: write_mesh => h5_write_mesh
       procedure :: write_step => h5_write_step
       procedure :: write_contact => h5_write_contact
@@ -191,7 +192,7 @@ contains
 
    !> Write /steps/NNNN (index zero-padded to 4 digits, wider beyond 9999) with
    !> attributes name and time and datasets U, S_element, S_node (with `sel`: those
-   !> selected); then flush.  With `indicator`, written with S: the dataset
+   !> selected).  With `indicator`, written with S: the dataset
    !> ERROR_INDICATOR (nelem) and the step attributes error_estimate and energy_norm
    !> (vemcontact_post_estimate).
    subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error, sel, indicator, estimate, energy)
@@ -258,13 +259,11 @@ contains
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
-      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
-      if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_step
 
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
    !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CNAREA
-   !> and STATUS (1 closed, 0 open); then flush.
+   !> and STATUS (1 closed, 0 open).
    subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
@@ -301,8 +300,6 @@ contains
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
-      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
-      if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_contact
 
    !> Write /steps/NNNN/contact/iterations: one entry per contact iteration of the
@@ -355,8 +352,6 @@ contains
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
-      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
-      if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_iterations
 
    !> Add to /mesh (after write_mesh) the labels of the elements: element_set
@@ -413,7 +408,7 @@ contains
    !> Add to /steps/NNNN (after write_step): strains E_element (4, nelem) and
    !> E_node (4, nnode), reaction forces RF (2, nnode), RF_total (2) over all
    !> nodes, LOAD_total (2) the applied loads it balances, and RF_sets/names, RF_sets/RF (2, nsets): the totals over the
-   !> constrained node sets (with `sel`: E and RF as selected); then flush.
+   !> constrained node sets (with `sel`: E and RF as selected).
    subroutine h5_write_results(self, istep, e_elem, e_node, rf, set_names, set_rf, error, sel, load_total)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
@@ -460,8 +455,6 @@ contains
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
-      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
-      if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_results
 
    !> The name of /steps/NNNN/contact, created when it does not exist yet.
@@ -483,9 +476,6 @@ contains
       integer, intent(in) :: istep
       character(len=:), allocatable, intent(out) :: gname
       type(error_t), allocatable, intent(out) :: error
-      integer(hid_t) :: grp
-      integer :: hdferr
-      logical :: exists
       gname = result_group(self, istep)//'/contact'
       call ensure_group(self, gname, error)
    end subroutine contact_group
@@ -524,6 +514,19 @@ contains
       end if
       gname = '/increments/'//gname(len('/steps/') + 1:)//'/'//trim(buf)
    end function result_group
+
+   !> Flush the file (HDF5 metadata and data to the operating system).  A flush walks
+   !> the whole metadata cache, whose size grows with the groups written, so the
+   !> driver flushes on a doubling schedule (after steps 1, 2, 4, ...), not after
+   !> every write: a flush per step made a run quadratic in its number of steps.
+   subroutine h5_flush(self, error)
+      class(h5_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: error
+      integer :: hdferr
+      if (.not. check_open(self, 'flush', error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing', error)) return
+   end subroutine h5_flush
 
    !> The results written next are those of increment m of the step (m > 0: the
    !> frame /increments/NNNN/MMMM), or of the end of the step (m = 0: /steps/NNNN).
