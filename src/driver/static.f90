@@ -347,8 +347,11 @@ contains
                                model%amplitudes)
          call solve_increment(model, opts, log, rs, istep, error)
          if (allocated(error)) then
-            ! only a contact iteration that does not converge is worth a smaller increment
+            ! only a contact iteration that used up its MAXIT iterations is worth a smaller
+            ! increment: an ill-conditioned or singular system, or an active set that
+            ! cycles, stops the run as in one increment
             if (error%code /= err_solver .or. rs%contact%n == 0) return
+            if (rs%sys%iterations < model%controls%max_iterations) return
             call ctl%cut_back(ok)
             if (.not. ok) then
                call increment_failure(model, ctl, istep, error)
