@@ -223,6 +223,8 @@ module vemcontact_model
       logical :: print = .false.
       character(len=:), allocatable :: set    !< NSET= or ELSET= (upper case), '' = the whole model
       integer :: totals = totals_no           !< TOTALS= of a PRINT request
+      !> FREQUENCY=n: results also every n-th increment of the step (0: at its end only)
+      integer :: frequency = 0
       type(string_t), allocatable :: fields(:)  !< e.g. U, RF, S, E, CPRESS, COPEN, CSLIP
       type(source_loc_t) :: loc
    end type output_request_t

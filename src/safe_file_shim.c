@@ -178,9 +178,17 @@ static int digits(const char *s, size_t n) {
     return 1;
 }
 
+/* True when s[0..n) is digits or digits_digits (a step, or a step's increment). */
+static int frame_digits(const char *s, size_t n) {
+    const char *us = memchr(s, '_', n);
+    if (us == NULL) return digits(s, n);
+    return digits(s, (size_t)(us - s)) && digits(us + 1, n - (size_t)(us - s) - 1);
+}
+
 /* True when `name` is one of job's result files: JOB.pvd, JOB.h5, JOB.xdmf, JOB.mtx,
- * JOB_NNNN.vtu, JOB_contact_NNNN.vtu, JOB_contact_pairK_NNNN.csv,
- * JOB_print_NNNN.csv, JOB_phases.csv. */
+ * JOB_NNNN.vtu, JOB_contact_NNNN.vtu (and the increments' JOB_NNNN_MMMM.vtu,
+ * JOB_contact_NNNN_MMMM.vtu), JOB_contact_pairK_NNNN.csv, JOB_print_NNNN.csv,
+ * JOB_phases.csv. */
 static int is_job_result(const char *name, size_t n, const char *job) {
     size_t j = strlen(job);
     const char *r;
@@ -196,8 +204,8 @@ static int is_job_result(const char *name, size_t n, const char *job) {
     m--;
     if (m == 10 && memcmp(r, "phases.csv", 10) == 0) return 1;
     if (m > 4 && memcmp(r + m - 4, ".vtu", 4) == 0) {
-        if (digits(r, m - 4)) return 1;
-        if (m > 12 && memcmp(r, "contact_", 8) == 0 && digits(r + 8, m - 12)) return 1;
+        if (frame_digits(r, m - 4)) return 1;
+        if (m > 12 && memcmp(r, "contact_", 8) == 0 && frame_digits(r + 8, m - 12)) return 1;
         return 0;
     }
     if (m > 10 && memcmp(r + m - 4, ".csv", 4) == 0 && memcmp(r, "print_", 6) == 0)

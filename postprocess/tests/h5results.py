@@ -35,3 +35,22 @@ def factorizations(h5_path):
 def pattern_rebuilds(h5_path):
     """The number of matrix pattern rebuilds of every step with contact."""
     return [int(r["rebuilt"].sum()) for r in iteration_records(h5_path)]
+
+
+def assert_rf_balanced(h5_path, rtol=1e-8):
+    """RF_total balances LOAD_total in every step (docs/output-format.md: RF is the
+    support's force, contact included): |RF_total + LOAD_total| <= rtol (sum |RF| +
+    |LOAD_total|); 1e-8: the contact iterations converge to a residual of 1e-10 of the
+    forces, and the sum over the nodes adds the round-off of K u."""
+    with h5py.File(h5_path, "r") as f:
+        for key in sorted(f["steps"]):
+            g = f["steps"][key]
+            if "RF_total" not in g or "LOAD_total" not in g:
+                continue
+            rf, load = np.array(g["RF_total"]), np.array(g["LOAD_total"])
+            scale = np.abs(np.array(g["RF"])).sum() + np.abs(load).sum()
+            # nothing loaded or supported (an open contact, no load): RF is round-off
+            # of K u alone, with no force to measure it against
+            if not np.any(load) and scale < 1e-10:
+                continue
+            assert np.abs(rf + load).max() <= rtol * scale, (h5_path, key, rf, load)

@@ -9,7 +9,7 @@ import subprocess
 import h5py
 import numpy as np
 
-from h5results import contact_iterations
+from h5results import assert_rf_balanced, contact_iterations
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -20,6 +20,8 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 def run(exe, deck, out, expect=0):
     r = subprocess.run([exe, "-q", "-o", str(out), str(deck)], capture_output=True, text=True)
     assert r.returncode == expect, r.stderr
+    if expect == 0:
+        assert_rf_balanced(os.path.join(str(out), os.path.basename(str(deck))[:-4] + ".h5"))
     return r
 
 

@@ -17,7 +17,7 @@ import subprocess
 import h5py
 import numpy as np
 
-from h5results import contact_iterations, line_search_steps, pattern_rebuilds
+from h5results import assert_rf_balanced, contact_iterations, line_search_steps, pattern_rebuilds
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -30,6 +30,7 @@ def run(exe, deck, out):
     """Run a deck; returns its results file JOB.h5."""
     r = subprocess.run([exe, "-q", "-o", str(out), str(deck)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+    assert_rf_balanced(out / (os.path.basename(str(deck))[:-4] + ".h5"))
     return out / (os.path.basename(str(deck))[:-4] + ".h5")
 
 

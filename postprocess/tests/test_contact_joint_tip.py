@@ -27,6 +27,8 @@ import sys
 
 import h5py
 import numpy as np
+
+from h5results import assert_rf_balanced
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -103,6 +105,7 @@ def contact_result(exe, deck, out):
     r = subprocess.run([exe, "-q", "-o", str(out), str(deck)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     job = os.path.splitext(os.path.basename(str(deck)))[0]
+    assert_rf_balanced(out / f"{job}.h5")
     with h5py.File(out / f"{job}.h5") as f:
         g = f["steps/0001/contact/pair_1"]
         return g["node_ids"][:], g["coordinates"][:], g["CPRESS"][:], g["STATUS"][:]

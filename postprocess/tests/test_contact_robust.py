@@ -10,7 +10,7 @@ import sys
 import h5py
 import numpy as np
 
-from h5results import contact_iterations, factorizations
+from h5results import assert_rf_balanced, contact_iterations, factorizations
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -23,6 +23,7 @@ def run(exe, deck, out):
     """Run a deck; returns its results file JOB.h5."""
     r = subprocess.run([exe, "-q", "-o", str(out), str(deck)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+    assert_rf_balanced(out / (deck.stem + ".h5"))
     return out / (deck.stem + ".h5")
 
 

@@ -23,6 +23,7 @@ import h5py
 import numpy as np
 import pytest
 
+from h5results import assert_rf_balanced
 from vctools.mesh.scene import mesh_scene_file
 
 E, NU, DELTA = 1.0e3, 0.3, 0.01
@@ -109,6 +110,7 @@ TOP, 2, 2, {float(-DELTA)!r}
 def run(exe, path, out):
     r = subprocess.run([exe, "-q", "-o", str(out), str(path)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+    assert_rf_balanced(out / (path.stem + ".h5"))
     with h5py.File(out / (path.stem + ".h5"), "r") as f:
         st = f["steps/0001"]
         pair = st["contact/pair_1"]

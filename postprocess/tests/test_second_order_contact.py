@@ -15,6 +15,8 @@ from pathlib import Path
 
 import h5py
 import numpy as np
+
+from h5results import assert_rf_balanced
 import pytest
 
 E, NU, P = 1000.0, 0.3, 5.0
@@ -98,6 +100,7 @@ def test_uniform_pressure_through_second_order_sides(exe, tmp_path, etype, behav
     inp.write_text(deck(etype, behavior, slave))
     r = subprocess.run([exe, "-q", "-o", str(tmp_path), str(inp)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+    assert_rf_balanced(tmp_path / "k2c.h5")
     with h5py.File(tmp_path / "k2c.h5") as f:
         c = f["steps/0001/contact/pair_1"]
         cpress = np.array(c["CPRESS"])
@@ -138,6 +141,7 @@ def hertz(exe, tmp_path, form, behavior):
     inp.write_text(text)
     r = subprocess.run([exe, "-q", "-o", str(tmp_path), str(inp)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+    assert_rf_balanced(tmp_path / "h.h5")
     with h5py.File(tmp_path / "h.h5") as f:
         c = f["steps/0001/contact/pair_1"]
         return (np.array(c["CPRESS"]), np.array(c["CNAREA"]), np.array(c["coordinates"]),

@@ -193,9 +193,9 @@ contains
          do i = 1, nodes%n
             do dof = int(d1), min(int(d2), 2)
                if (p%in_step) then
-                  call push_dof(p%cur%boundary, p%cur%nb, dof_value_t(nodes%a(i), dof, v))
+                  call push_dof(p%cur%boundary, p%cur%nb, dof_value_t(nodes%a(i), dof, v, p%amp))
                else
-                  call push_dof(p%init%boundary, p%init%nb, dof_value_t(nodes%a(i), dof, v))
+                  call push_dof(p%init%boundary, p%init%nb, dof_value_t(nodes%a(i), dof, v, p%amp))
                end if
             end do
          end do
@@ -296,7 +296,7 @@ contains
             cycle
          end if
          do i = 1, nodes%n
-            call push_dof(p%cur%cload, p%cur%nc, dof_value_t(nodes%a(i), int(dof), val))
+            call push_dof(p%cur%cload, p%cur%nc, dof_value_t(nodes%a(i), int(dof), val, p%amp))
          end do
       end do
    end subroutine read_cload
@@ -352,6 +352,7 @@ contains
             rec = dload_t(kind=dload_grav, side=0, magnitude=mag, dir=d(1:2)/dnorm)
             do i = 1, elems%n
                rec%elem = elems%a(i)
+               rec%amp = p%amp
                call push_dload(p%cur%dload, p%cur%nd, rec)
                call add_grav(p, elems%a(i))
             end do
@@ -385,6 +386,7 @@ contains
             rec = dload_t(kind=dload_hydrostatic, side=side, magnitude=mag, dir=[yzero, yref])
             do i = 1, elems%n
                rec%elem = elems%a(i)
+               rec%amp = p%amp
                call push_dload(p%cur%dload, p%cur%nd, rec)
             end do
          else if (len(label) >= 2 .and. index(label, 'P') == 1) then   ! index: safe on an empty label
@@ -404,6 +406,7 @@ contains
             rec = dload_t(kind=dload_pressure, side=side, magnitude=mag, dir=0.0_wp)
             do i = 1, elems%n
                rec%elem = elems%a(i)
+               rec%amp = p%amp
                call push_dload(p%cur%dload, p%cur%nd, rec)
             end do
          else

@@ -67,7 +67,7 @@ contains
       r%loc = here(p)
       r%set = ''
       allocate (r%fields(0))
-      call check_frequency(p, kw, kname)
+      call check_frequency(p, kw, kname, r%frequency)
       found = .false.
       if (category == output_node) call get_param(kw, 'NSET', val, found)
       if (category == output_element) call get_param(kw, 'ELSET', val, found)
@@ -115,8 +115,8 @@ contains
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
       type(output_request_t) :: r
-      integer :: c, k
-      call check_frequency(p, kw, '*OUTPUT')
+      integer :: c, k, freq
+      call check_frequency(p, kw, '*OUTPUT', freq)
       if (has_param(kw, 'VARIABLE')) then
          do c = output_node, output_contact
             r = output_request_t(category=c, loc=here(p))
@@ -136,22 +136,27 @@ contains
       end do
    end subroutine read_output
 
-   !> FREQUENCY=n (CalculiX and Abaqus): a non-negative integer; a linear step has one
-   !> increment, whose results are always written, so the value does not change the output.
-   subroutine check_frequency(p, kw, kname)
+   !> FREQUENCY=n (CalculiX and Abaqus): a non-negative integer, `freq` (0 without it).
+   !> A file request's n > 0 writes the results of every n-th increment of the step
+   !> besides its end (the driver); the end of a step is always written.
+   subroutine check_frequency(p, kw, kname, freq)
       type(deck_parser_t), intent(inout) :: p
       type(keyword_line_t), intent(in) :: kw
       character(len=*), intent(in) :: kname
+      integer, intent(out) :: freq
       character(len=:), allocatable :: val
       logical :: found
       integer :: stat
       integer(ip) :: n
+      freq = 0
       call get_param(kw, 'FREQUENCY', val, found)
       if (.not. found) return
       call parse_int(val, n, stat)
       if (stat /= num_ok .or. n < 0) then
          call err_here(p, 'FREQUENCY of '//kname//' must be a non-negative integer, found '''//val//'''')
+         return
       end if
+      freq = int(n)
    end subroutine check_frequency
 
    !> Add the fields of variable `key` to `r`, or warn that it is not available.

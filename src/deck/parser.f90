@@ -19,7 +19,7 @@ module vemcontact_deck_parser
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
                                        kw_output, kw_uplift, kw_equation, kw_part, kw_end_part, kw_assembly, &
                                        kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
-                                       kw_initial_conditions, kw_temperature, kw_expansion, kw_tie
+                                       kw_initial_conditions, kw_temperature, kw_expansion, kw_tie, kw_amplitude
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
@@ -31,6 +31,7 @@ module vemcontact_deck_parser
    use vemcontact_deck_equations, only: read_equation
    use vemcontact_deck_assembly, only: read_part, end_part, read_assembly, end_assembly, read_instance, &
                                        end_instance, read_noop, instance_offsets, qualify_in_part
+   use vemcontact_deck_amplitude, only: read_amplitude, load_amplitude
    use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_uplift, only: read_uplift
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
@@ -123,11 +124,19 @@ contains
          case (kw_solid_section)
             call read_section(p, model, kw)
          case (kw_boundary)
+            call load_amplitude(p, model, kw, '*BOUNDARY')
             call read_boundary(p, model, kw)
+            p%amp = 0
          case (kw_cload)
+            call load_amplitude(p, model, kw, '*CLOAD')
             call read_cload(p, model, kw)
+            p%amp = 0
          case (kw_dload)
+            call load_amplitude(p, model, kw, '*DLOAD')
             call read_dload(p, model, kw)
+            p%amp = 0
+         case (kw_amplitude)
+            call read_amplitude(p, model, kw)
          case (kw_step)
             call start_step(p, model, kw)
             call no_data(p, '*STEP')
@@ -136,7 +145,9 @@ contains
          case (kw_geostatic)
             call read_procedure(p, .true., model, kw)
          case (kw_dsload)
+            call load_amplitude(p, model, kw, '*DSLOAD')
             call read_dsload(p, model, kw)
+            p%amp = 0
          case (kw_surface)
             call read_surface(p, model, kw)
          case (kw_surface_interaction)

@@ -26,7 +26,8 @@ module vemcontact_deck_registry
                                  kw_contact_output = 32, kw_output = 33, kw_uplift = 34, kw_equation = 35, &
                                  kw_part = 36, kw_end_part = 37, kw_assembly = 38, kw_end_assembly = 39, &
                                  kw_instance = 40, kw_end_instance = 41, kw_preprint = 42, kw_restart = 43, &
-                                 kw_initial_conditions = 44, kw_temperature = 45, kw_expansion = 46, kw_tie = 47
+                                 kw_initial_conditions = 44, kw_temperature = 45, kw_expansion = 46, kw_tie = 47, &
+                                 kw_amplitude = 48
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -58,7 +59,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(47) = [ &
+   type(keyword_spec_t), parameter :: keywords(48) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -105,9 +106,10 @@ module vemcontact_deck_registry
                                       keyword_spec_t('INITIAL CONDITIONS', ctx_model, data_required), &
                                       keyword_spec_t('TEMPERATURE', ctx_step, data_required), &
                                       keyword_spec_t('EXPANSION', ctx_model, data_required), &
-                                      keyword_spec_t('TIE', ctx_model, data_required)]
+                                      keyword_spec_t('TIE', ctx_model, data_required), &
+                                      keyword_spec_t('AMPLITUDE', ctx_any, data_required)]
 
-   type(param_spec_t), parameter :: params(146) = [ &
+   type(param_spec_t), parameter :: params(152) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -266,11 +268,19 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_tie, 'TYPE', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_tie, 'CYCLIC SYMMETRY', par_flag, .false., val_name, ''), &
                                     param_spec_t(kw_tie, 'MULTISTAGE', par_flag, .false., val_name, ''), &
-                                    param_spec_t(kw_tie, 'FLUID PRESSURE', par_flag, .false., val_name, '')]
+                                    param_spec_t(kw_tie, 'FLUID PRESSURE', par_flag, .false., val_name, ''), &
+                                    ! load increments: *AMPLITUDE and the loads that name one
+                                    param_spec_t(kw_amplitude, 'NAME', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_amplitude, 'TIME', par_value, .false., val_name, &
+                                                 'TOTALTIME STEPTIME'), &
+                                    param_spec_t(kw_boundary, 'AMPLITUDE', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_cload, 'AMPLITUDE', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_dload, 'AMPLITUDE', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_dsload, 'AMPLITUDE', par_value, .false., val_name, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(23) = [character(len=24) :: &
-                                   'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
+   character(len=24), parameter :: calculix_only(22) = [character(len=24) :: &
+                                   'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
                                    'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', &
                                    'VISCO', 'FILM', 'FREQUENCY', &
                                    'FRICTION', 'HEATTRANSFER', 'KINEMATIC', &

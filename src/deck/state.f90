@@ -88,6 +88,8 @@ module vemcontact_deck_state
       type(item_list_t) :: reduced            !< elements of the reduced-integration types (CPE8R/CPS8R)
       integer :: cur_mat = 0                !< material that *ELASTIC and *DENSITY apply to
       integer :: cur_inter = 0              !< interaction that *SURFACE BEHAVIOR applies to, -1 = dropped
+      !> AMPLITUDE= of the load keyword being read: index into model%amplitudes, 0 = none
+      integer :: amp = 0
       logical :: in_step = .false.
       logical :: procedure_seen = .false.   !< *STATIC or *GEOSTATIC in the current step
       logical :: section_errors = .false.   !< suppresses "no section" noise after a bad *SOLID SECTION

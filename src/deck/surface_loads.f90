@@ -82,7 +82,8 @@ contains
          end if
          associate (s => model%surfaces(k))
             do i = 1, size(s%elem)
-               rec = dload_t(elem=s%elem(i), kind=kind, side=s%side(i), magnitude=mag, dir=[yzero, yref])
+               rec = dload_t(elem=s%elem(i), kind=kind, side=s%side(i), magnitude=mag, dir=[yzero, yref], &
+                             amp=p%amp)
                call push_dload(p%cur%dload, p%cur%nd, rec)
             end do
          end associate

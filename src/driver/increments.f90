@@ -43,7 +43,7 @@ module vemcontact_driver_increments
       procedure :: accept
       procedure :: cut_back
       procedure :: finished
-      procedure :: fraction
+      procedure :: step_fraction
    end type increment_control_t
 
 contains
@@ -126,14 +126,14 @@ contains
    end function finished
 
    !> The fraction of the step at the end of the increment tried (exactly 1 for the last).
-   pure real(wp) function fraction(self)
+   pure real(wp) function step_fraction(self)
       class(increment_control_t), intent(in) :: self
       if (self%t_try >= self%period) then
-         fraction = 1.0_wp
+         step_fraction = 1.0_wp
       else
-         fraction = self%t_try/self%period
+         step_fraction = self%t_try/self%period
       end if
-   end function fraction
+   end function step_fraction
 
    !> The value of amplitude `amp` at time t: linear between its points, constant
    !> beyond its ends (CalculiX).

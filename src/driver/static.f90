@@ -357,8 +357,10 @@ contains
       type(contact_state_t) :: contact_saved
       real(wp), allocatable :: u_start(:), u_saved(:)
       logical :: ok, several
+      integer :: frequency
       character(len=200) :: buf
       rs%current = istep
+      frequency = output_frequency(model, istep)
       log%step = istep
       call log%say('step '//step_name(model, istep))
       call advance_load_state(model%steps(istep), rs%given)
@@ -379,12 +381,15 @@ contains
             u_saved = rs%u
             if (rs%contact%n > 0) contact_saved = rs%contact
          end if
-         rs%applied = loads_at(model%steps(istep), rs%given, rs%prev, u_start, ctl%fraction(), rs%t_start, &
+         rs%applied = loads_at(model%steps(istep), rs%given, rs%prev, u_start, ctl%step_fraction(), rs%t_start, &
                                model%amplitudes)
          call solve_increment(model, opts, log, rs, istep, error)
          if (allocated(error)) then
-            ! only a contact iteration that does not converge is worth a smaller increment
+            ! only a contact iteration that used up its MAXIT iterations is worth a smaller
+            ! increment: an ill-conditioned or singular system, or an active set that
+            ! cycles, stops the run as in one increment
             if (error%code /= err_solver .or. rs%contact%n == 0) return
+            if (rs%sys%iterations < model%controls%max_iterations) return
             call ctl%cut_back(ok)
             if (.not. ok) then
                call increment_failure(model, ctl, istep, error)
@@ -400,6 +405,14 @@ contains
             cycle
          end if
          call ctl%accept(rs%sys%iterations)
+         if (ctl%finished()) exit
+         if (frequency > 0) then
+            if (mod(ctl%increment, frequency) == 0) then
+               ! *NODE FILE, FREQUENCY=n etc.: the results of this increment
+               call write_frame(model, opts, log, rs, istep, ctl, error)
+               if (allocated(error)) return
+            end if
+         end if
       end do
       rs%prev = rs%applied
       rs%t_start = rs%t_start + model%steps(istep)%period
@@ -416,12 +429,18 @@ contains
          rs%done = istep
          return
       end if
-      call post_process(model, log, rs)
+      call post_process(model, log, rs, .false.)
       rs%res%extra%time = rs%t_start
-      call write_results(model, opts, log, rs, istep, error)
+      call write_results(model, opts, log, rs, istep, 0, error)
       if (allocated(error)) return
       rs%done = istep
       rs%pvd_done = rs%pvd%n
+      ! the .pvd and an HDF5 flush cost O(steps so far) each: after steps 1, 2, 4, ...
+      ! (and the last), so that a run costs O(steps)
+      if (pvd_rewrite_due(istep) .or. istep == size(model%steps)) then
+         call rs%h5%flush(error)
+         if (allocated(error)) return
+      end if
       if (opts%write_vtu .and. (pvd_rewrite_due(istep) .or. istep == size(model%steps))) then
          call rs%pvd%write(rs%base//'.pvd', error)
          if (allocated(error)) return
@@ -452,7 +471,7 @@ contains
          write (buf, '(a,es12.5,a,es12.5,a,es10.3,a)') ' did not converge at step time ', ctl%t, ' of ', &
             ctl%period, ': the increment reached its minimum ', ctl%dt_min, ': '
       end if
-      call fatal_error(error, 'error: step '//step_name(model, istep)//trim(buf)//why//new_line('a')// &
+      call fatal_error(error, 'error: step '//step_name(model, istep)//trim(buf)//' '//why//new_line('a')// &
                        '  = help: a smaller initial or minimum increment on the *STATIC data line, '// &
                        'or more contact iterations (*CONTACT CONTROLS, MAXIT)', err_solver)
    end subroutine increment_failure
@@ -515,11 +534,54 @@ contains
       call log%lap('write matrix')
    end subroutine solve_increment
 
-   !> Stresses, strains, the error estimate and the reactions of the converged state.
-   subroutine post_process(model, log, rs)
+   !> The smallest FREQUENCY=n > 0 of the file output requests in force in step
+   !> `istep`: its results are written every n increments too (0: at its end only).
+   pure integer function output_frequency(model, istep) result(n)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: istep
+      integer :: k
+      n = 0
+      if (.not. allocated(model%steps(istep)%outputs)) return
+      do k = 1, size(model%steps(istep)%outputs)
+         associate (r => model%steps(istep)%outputs(k))
+            if (r%print .or. r%frequency <= 0) cycle
+            if (n == 0) then
+               n = r%frequency
+            else
+               n = min(n, r%frequency)
+            end if
+         end associate
+      end do
+   end function output_frequency
+
+   !> The results of increment ctl%increment within step `istep` (not its last): a
+   !> frame in JOB.h5 (/increments/NNNN/MMMM), JOB_NNNN_MMMM.vtu (and the contact
+   !> points' JOB_contact_NNNN_MMMM.vtu) with an entry in JOB.pvd at the total time.
+   subroutine write_frame(model, opts, log, rs, istep, ctl, error)
+      type(model_t), intent(in) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(increment_control_t), intent(in) :: ctl
+      type(error_t), allocatable, intent(out) :: error
+      rs%res%u_out = rs%u - rs%u_ref
+      call rs%sys%elastic_times(rs%u, rs%res%ku)
+      if (.not. opts%write_files) return
+      call post_process(model, log, rs, .true.)
+      rs%res%extra%time = rs%t_start + ctl%t
+      call rs%h5%set_increment(ctl%increment)
+      call write_results(model, opts, log, rs, istep, ctl%increment, error)
+      call rs%h5%set_increment(0)
+   end subroutine write_frame
+
+   !> Stresses, strains, the error estimate and the reactions of the converged state
+   !> (`quiet`: without their log lines, for the frames of increments).
+   subroutine post_process(model, log, rs, quiet)
       type(model_t), intent(in) :: model
       type(logger_t), intent(inout) :: log
       type(run_state_t), intent(inout) :: rs
+      logical, intent(in) :: quiet
       integer, allocatable :: rf_sets(:)
       real(wp), allocatable :: fc(:)
       integer :: k
@@ -539,7 +601,7 @@ contains
             call element_strains(model, r%s_elem, r%extra%e_elem, dtemp=st%dtemp)
             call nodal_average(model, r%extra%e_elem, r%extra%e_node)
          end if
-         call log%lap('stresses')
+         if (.not. quiet) call log%lap('stresses')
          ! the recovery-based error estimate: second-order models recover a quadratic
          ! stress from the cells' own linear stresses (s_at)
          if (.not. allocated(r%s_at)) then
@@ -547,8 +609,8 @@ contains
          else
             call estimate_error2(model, r%s_at, r%est)
          end if
-         call log%lap('estimate')
-         call say_estimate(log, r%est)
+         if (.not. quiet) call log%lap('estimate')
+         if (.not. quiet) call say_estimate(log, r%est)
          ! reactions: the force the supports exert, K u - f_ext - f_contact at the
          ! constrained dofs with the loads in force (a constrained slave or master node
          ! also takes its contact force: the support carries the rest); contact%forces
@@ -572,17 +634,19 @@ contains
             r%set_names(k)%s = model%nsets(rf_sets(k))%name
             r%set_rf(:, k) = sum(r%extra%rf(:, model%nsets(rf_sets(k))%items), dim=2)
          end do
-         call log_reactions(log, r%extra%rf, r%f, r%set_names, r%set_rf)
+         if (.not. quiet) call log_reactions(log, r%extra%rf, r%f, r%set_names, r%set_rf)
       end associate
    end subroutine post_process
 
-   !> The results of step `istep` in every file: VTU, HDF5, contact VTU and CSV, PRINT CSV.
-   subroutine write_results(model, opts, log, rs, istep, error)
+   !> The results of step `istep` in every file: VTU, HDF5, contact VTU and CSV, PRINT
+   !> CSV; of its increment `frame` > 0: VTU, HDF5 and contact VTU (file names with
+   !> _NNNN_MMMM; the HDF5 group is the writer's, set_increment).
+   subroutine write_results(model, opts, log, rs, istep, frame, error)
       type(model_t), intent(in) :: model
       type(run_options_t), intent(in) :: opts
       type(logger_t), intent(inout) :: log
       type(run_state_t), intent(inout) :: rs
-      integer, intent(in) :: istep
+      integer, intent(in) :: istep, frame
       type(error_t), allocatable, intent(out) :: error
       type(field_selection_t) :: sel
       character(len=64) :: buf
@@ -594,8 +658,7 @@ contains
       associate (r => rs%res)
          ! the fields the deck's output requests select (all without requests)
          sel = step_selection(model, istep)
-         write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
-         vtu_name = opts%out_dir//'/'//opts%job//trim(buf)
+         vtu_name = opts%out_dir//'/'//opts%job//'_'//frame_suffix(istep, frame)//'.vtu'
          if (opts%write_vtu) then
             call write_vtu(vtu_name, model, reshape(r%u_out, [2, nn]), r%s_elem, r%s_node, error, &
                            opts%compress_vtu, r%extra, sel, indicator=r%est%indicator)
@@ -610,12 +673,13 @@ contains
                                   error, sel, load_total=[sum(r%f(1::2)), sum(r%f(2::2))])
          if (allocated(error)) return
          if (rs%contact%n > 0) then
-            call write_contact_results(model, opts, log, rs, istep, sel, error)
+            call write_contact_results(model, opts, log, rs, istep, frame, sel, error)
             if (allocated(error)) return
          end if
+         if (frame > 0) return
          if (has_print_requests(model, istep)) then
             ! *NODE PRINT, *EL PRINT, *CONTACT PRINT: CalculiX's JOB.dat as a CSV table
-            write (buf, '(a,i4.4,a)') '_print_', istep, '.csv'
+            buf = '_print_'//frame_suffix(istep, 0)//'.csv'
             if (rs%contact%n > 0) then
                call write_print_csv(rs%base//trim(buf), model, istep, reshape(r%u_out, [2, nn]), r%extra%rf, &
                                     r%s_elem, r%extra%e_elem, error, r%tab)
@@ -630,12 +694,12 @@ contains
 
    !> Contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group
    !> per pair when a contact field is selected; the iteration records; the log's summary.
-   subroutine write_contact_results(model, opts, log, rs, istep, sel, error)
+   subroutine write_contact_results(model, opts, log, rs, istep, frame, sel, error)
       type(model_t), intent(in) :: model
       type(run_options_t), intent(in) :: opts
       type(logger_t), intent(inout) :: log
       type(run_state_t), intent(inout) :: rs
-      integer, intent(in) :: istep
+      integer, intent(in) :: istep, frame
       type(field_selection_t), intent(in) :: sel
       type(error_t), allocatable, intent(out) :: error
       character(len=160) :: buf
@@ -645,8 +709,7 @@ contains
       associate (tab => rs%res%tab, u_out => rs%res%u_out)
          tab = rs%contact%table(model, u_out)
          if (sel%contact() .and. opts%write_vtu) then
-            write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
-            name = opts%out_dir//'/'//opts%job//trim(buf)
+            name = opts%out_dir//'/'//opts%job//'_contact_'//frame_suffix(istep, frame)//'.vtu'
             call write_contact_vtu(name, tab, reshape(u_out, [2, int(model%nnode)]), error, opts%compress_vtu, sel)
             if (allocated(error)) return
             call rs%pvd%add(name, rs%res%extra%time, 1)
@@ -656,9 +719,12 @@ contains
             ! CFLUIDP with *UPLIFT (an unallocated actual argument is absent)
             if (allocated(fluid)) deallocate (fluid)
             if (allocated(tab%cfluidp)) fluid = pack(tab%cfluidp, tab%pair == ip_)
-            write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
-            call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error, sel)
-            if (allocated(error)) return
+            if (frame == 0) then
+               write (buf, '(a,i0,a)') '_contact_pair', ip_, '_'
+               call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf)//frame_suffix(istep, 0)//'.csv', &
+                                      tab, ip_, error, sel)
+               if (allocated(error)) return
+            end if
             call rs%h5%write_contact(istep, ip_, pack(tab%node_id, tab%pair == ip_), &
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
@@ -667,6 +733,7 @@ contains
             if (allocated(error)) return
          end do
       end associate
+      if (frame > 0) return
       call rs%h5%write_iterations(istep, rs%sys%records, error)
       if (allocated(error)) return
       write (buf, '(2x,a,i0,a,i0,a,es12.4,a,es12.4)') 'contact: ', count(rs%contact%active), ' of ', rs%contact%n, &
@@ -674,6 +741,30 @@ contains
          rs%contact%max_penetration()
       call log%say(trim(buf))
    end subroutine write_contact_results
+
+   !> NNNN (the step, four digits or more) or NNNN_MMMM for increment `frame` > 0.
+   pure function frame_suffix(istep, frame) result(s)
+      integer, intent(in) :: istep, frame
+      character(len=:), allocatable :: s
+      character(len=24) :: b
+      ! four digits, more beyond 9999 (as the HDF5 groups)
+      call put(istep, b)
+      s = trim(b)
+      if (frame <= 0) return
+      call put(frame, b)
+      s = s//'_'//trim(b)
+   contains
+      !> i4.4, or i0 when it does not fit
+      pure subroutine put(v, t)
+         integer, intent(in) :: v
+         character(len=*), intent(out) :: t
+         if (v <= 9999) then
+            write (t, '(i4.4)') v
+         else
+            write (t, '(i0)') v
+         end if
+      end subroutine put
+   end function frame_suffix
 
    !> "estimated relative energy error 2.3 %; 50 % of it in 4.1 % of the cells, around (x, y)"
    subroutine say_estimate(log, e)

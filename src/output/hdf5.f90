@@ -51,8 +51,13 @@ module vemcontact_output_hdf5
       character(len=:), allocatable :: tmp
       !> sizes of the mesh written, to check the steps against; -1 before write_mesh
       integer(ip) :: nnode = -1, nelem = -1
+      !> 0: the results written go to the step's group /steps/NNNN; m > 0: to the
+      !> frame of increment m, /increments/NNNN/MMMM (set_increment)
+      integer :: frame = 0
    contains
       procedure :: open => h5_open
+      procedure :: set_increment => h5_set_increment
+      procedure :: flush => h5_flush
       procedure :: write_mesh => h5_write_mesh
       procedure :: write_step => h5_write_step
       procedure :: write_contact => h5_write_contact
@@ -199,7 +204,7 @@ contains
 
    !> Write /steps/NNNN (index zero-padded to 4 digits, wider beyond 9999) with
    !> attributes name and time and datasets U, S_element, S_node (with `sel`: those
-   !> selected); then flush.  With `indicator`, written with S: the dataset
+   !> selected).  With `indicator`, written with S: the dataset
    !> ERROR_INDICATOR (nelem) and the step attributes error_estimate and energy_norm
    !> (vemcontact_post_estimate).
    subroutine h5_write_step(self, istep, name, time, u, s_elem, s_node, error, sel, indicator, estimate, energy)
@@ -240,7 +245,12 @@ contains
          call fatal_error(error, 'write_step: negative step index ('//self%path//')', err_internal)
          return
       end if
-      gname = step_group(istep)
+      gname = result_group(self, istep)
+      if (self%frame > 0) then
+         call ensure_group(self, '/increments', error)
+         if (.not. allocated(error)) call ensure_group(self, gname(1:index(gname, '/', back=.true.) - 1), error)
+         if (allocated(error)) return
+      end if
       call h5gcreate_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'creating group '//gname, error)) return
       call put_string_attribute(self, grp, 'name', name, error)
@@ -261,13 +271,11 @@ contains
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
-      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
-      if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_step
 
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
    !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CNAREA
-   !> and STATUS (1 closed, 0 open), with *UPLIFT CFLUIDP beside CPRESS; then flush.
+   !> and STATUS (1 closed, 0 open), with *UPLIFT CFLUIDP beside CPRESS.
    subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel, &
                                cfluidp)
       class(h5_writer_t), intent(inout) :: self
@@ -311,8 +319,6 @@ contains
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
-      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
-      if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_contact
 
    !> Write /steps/NNNN/contact/iterations: one entry per contact iteration of the
@@ -365,8 +371,6 @@ contains
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
-      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
-      if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_iterations
 
    !> Add to /mesh (after write_mesh) the labels of the elements: element_set
@@ -423,7 +427,7 @@ contains
    !> Add to /steps/NNNN (after write_step): strains E_element (4, nelem) and
    !> E_node (4, nnode), reaction forces RF (2, nnode), RF_total (2) over all
    !> nodes, LOAD_total (2) the applied loads it balances, and RF_sets/names, RF_sets/RF (2, nsets): the totals over the
-   !> constrained node sets (with `sel`: E and RF as selected); then flush.
+   !> constrained node sets (with `sel`: E and RF as selected).
    subroutine h5_write_results(self, istep, e_elem, e_node, rf, set_names, set_rf, error, sel, load_total)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
@@ -447,7 +451,7 @@ contains
                           self%path//')', err_internal)
          return
       end if
-      gname = step_group(istep)
+      gname = result_group(self, istep)
       call h5gopen_f(self%file, gname, grp, hdferr)
       if (failed(self, hdferr, 'opening group '//gname, error)) return
       if (w%e) call put_real(self, grp, 'E_element', shape(e_elem, hsize_t), e_elem, error)
@@ -470,8 +474,6 @@ contains
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
-      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
-      if (failed(self, hdferr, 'flushing after '//gname, error)) return
    end subroutine h5_write_results
 
    !> The name of /steps/NNNN/contact, created when it does not exist yet.
@@ -493,10 +495,18 @@ contains
       integer, intent(in) :: istep
       character(len=:), allocatable, intent(out) :: gname
       type(error_t), allocatable, intent(out) :: error
+      gname = result_group(self, istep)//'/contact'
+      call ensure_group(self, gname, error)
+   end subroutine contact_group
+
+   !> Create the group `gname` (its parent must exist) unless it exists.
+   subroutine ensure_group(self, gname, error)
+      class(h5_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: gname
+      type(error_t), allocatable, intent(out) :: error
       integer(hid_t) :: grp
       integer :: hdferr
       logical :: exists
-      gname = step_group(istep)//'/contact'
       call h5lexists_f(self%file, gname, exists, hdferr)
       if (failed(self, hdferr, 'looking up '//gname, error)) return
       if (.not. exists) then
@@ -505,7 +515,45 @@ contains
          call h5gclose_f(grp, hdferr)
          if (failed(self, hdferr, 'closing group '//gname, error)) return
       end if
-   end subroutine contact_group
+   end subroutine ensure_group
+
+   !> Where the results of step istep go: /steps/NNNN, or the frame of the increment
+   !> set by set_increment, /increments/NNNN/MMMM (four digits each, more when needed).
+   pure function result_group(self, istep) result(gname)
+      class(h5_writer_t), intent(in) :: self
+      integer, intent(in) :: istep
+      character(len=:), allocatable :: gname
+      character(len=24) :: buf
+      gname = step_group(istep)
+      if (self%frame <= 0) return
+      if (self%frame <= 9999) then
+         write (buf, '(i4.4)') self%frame
+      else
+         write (buf, '(i0)') self%frame
+      end if
+      gname = '/increments/'//gname(len('/steps/') + 1:)//'/'//trim(buf)
+   end function result_group
+
+   !> Flush the file (HDF5 metadata and data to the operating system).  A flush walks
+   !> the whole metadata cache, whose size grows with the groups written, so the
+   !> driver flushes on a doubling schedule (after steps 1, 2, 4, ...), not after
+   !> every write: a flush per step made a run quadratic in its number of steps.
+   subroutine h5_flush(self, error)
+      class(h5_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: error
+      integer :: hdferr
+      if (.not. check_open(self, 'flush', error)) return
+      call h5fflush_f(self%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      if (failed(self, hdferr, 'flushing', error)) return
+   end subroutine h5_flush
+
+   !> The results written next are those of increment m of the step (m > 0: the
+   !> frame /increments/NNNN/MMMM), or of the end of the step (m = 0: /steps/NNNN).
+   subroutine h5_set_increment(self, m)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: m
+      self%frame = m
+   end subroutine h5_set_increment
 
    !> Remove /steps/NNNN if it exists: a step that failed part way, so that the
    !> file lists only steps complete in every results file.
