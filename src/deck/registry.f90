@@ -23,7 +23,7 @@ module vemcontact_deck_registry
                                  kw_geostatic = 22, kw_dsload = 23, kw_node_file = 24, kw_el_file = 25, &
                                  kw_contact_file = 26, kw_node_print = 27, kw_el_print = 28, &
                                  kw_contact_print = 29, kw_node_output = 30, kw_element_output = 31, &
-                                 kw_contact_output = 32, kw_output = 33
+                                 kw_contact_output = 32, kw_output = 33, kw_friction = 34
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -55,7 +55,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(33) = [ &
+   type(keyword_spec_t), parameter :: keywords(34) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -88,9 +88,10 @@ module vemcontact_deck_registry
                                       keyword_spec_t('NODE OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('ELEMENT OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('CONTACT OUTPUT', ctx_step, data_optional), &
-                                      keyword_spec_t('OUTPUT', ctx_step, data_none)]
+                                      keyword_spec_t('OUTPUT', ctx_step, data_none), &
+                                      keyword_spec_t('FRICTION', ctx_model, data_optional)]
 
-   type(param_spec_t), parameter :: params(110) = [ &
+   type(param_spec_t), parameter :: params(112) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -206,14 +207,17 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_output, 'FREQUENCYF', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_output, 'TIME POINTS', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_output, 'NUMBER INTERVAL', par_value, .false., val_int, ''), &
-                                    param_spec_t(kw_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL')]
+                                    param_spec_t(kw_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL'), &
+                                    param_spec_t(kw_friction, 'ROUGH', par_flag, .false., val_name, ''), &
+                                    ! vemcontact: Mohr-Coulomb cohesion; sign checked by the handler
+                                    param_spec_t(kw_friction, 'COHESION', par_value, .false., val_real, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(29) = [character(len=24) :: &
+   character(len=24), parameter :: calculix_only(28) = [character(len=24) :: &
                                    'AMPLITUDE', 'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
                                    'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', &
                                    'VISCO', 'EQUATION', 'EXPANSION', 'FILM', 'FREQUENCY', &
-                                   'FRICTION', 'HEATTRANSFER', 'INITIALCONDITIONS', 'KINEMATIC', &
+                                   'HEATTRANSFER', 'INITIALCONDITIONS', 'KINEMATIC', &
                                    'MPC', 'ORIENTATION', 'PLASTIC', 'RESTART', 'SHELLSECTION', &
                                    'SPECIFICHEAT', &
                                    'TEMPERATURE', 'TIEPOINTS', 'TIE', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']
