@@ -19,7 +19,7 @@ module vemcontact_contact_iteration
    use vemcontact_contact_rules, only: matrix_key_t, key_of, same_key, line_search_step, needs_line_search, &
                                        hold_nodes, is_cycle, conditioning_verdict, &
                                        conditioning_hint, residual_norm, cond_ok, cond_warn, &
-                                       near_key, pairing_drift, &
+                                       near_key, pairing_drift, stick_flips, max_stick_flips, &
                                        cond_stop, cond_stop_penalty
    use vemcontact_linalg_gmres, only: linear_operator_t, gmres, gmres_result_t
    use vemcontact_linalg_norms, only: safe_norm2
@@ -37,12 +37,18 @@ module vemcontact_contact_iteration
    integer, parameter :: gmres_restart = 10, gmres_maxit = 30
    !> The reduction of the residual a solve aims at (krylov_solve)
    real(wp), parameter :: gmres_reduction = 1.0e-6_wp
+   !> ... and with slipping friction: the solve then is the frozen system itself (not
+   !> a Newton step on the pairing), so it is solved to its round-off floor, as the
+   !> direct solve's refinement does (at 1e-6 the slip patch test stopped at 1e-7 of
+   !> the stresses, within the residual tolerance)
+   real(wp), parameter :: gmres_reduction_friction = 1.0e-14_wp
 
    !> One iteration, as logged and written to the results.
    type :: iteration_record_t
       integer :: iteration = 0
       integer :: active = 0              !< closed slave entries after the iteration
       integer :: changed = 0             !< entries whose state changed (holds included)
+      integer :: slip_changes = 0        !< frictional entries whose stick/slip state changed
       real(wp) :: residual = 0.0_wp      !< relative residual (residual_norm)
       real(wp) :: penetration = 0.0_wp   !< largest overclosure
       real(wp) :: pressure = 0.0_wp      !< largest contact pressure
@@ -145,6 +151,7 @@ module vemcontact_contact_iteration
    type :: iteration_state_t
       integer :: it = 0, maxit = 0
       integer :: nchanged = 0             !< entries whose state changed in the last update
+      integer :: nslip = 0                !< entries whose stick/slip state changed in it
       real(wp) :: kmax = 0.0_wp           !< largest elastic diagonal entry
       real(wp) :: rel = 0.0_wp            !< relative residual of the last iteration
       real(wp) :: step = 1.0_wp           !< line search step of the last solve
@@ -215,6 +222,7 @@ contains
          if (allocated(error)) return
          call record_iteration(s, sys, fixed, fext, u, contact, log)
          if (has_converged(s, model, u, contact)) then
+            call contact%commit_friction()
             call contact%set_balanced(model, s%ku - fext, fixed)
             call report_slid_off(s, model, contact, log)
             return
@@ -262,6 +270,7 @@ contains
       call contact%project(model, u, error)
       if (allocated(error)) return
       call contact%update_active(s%nchanged)
+      call contact%update_friction(u, s%nslip)
       sys%t_search = wall_time() - t0
       s%iseg_start = contact%iseg
       s%history(:, 0) = contact%active
@@ -284,7 +293,7 @@ contains
       type(contact_state_t), intent(inout) :: contact
       type(error_t), allocatable, intent(out) :: error
       type(logger_t), intent(inout), optional :: log
-      logical :: same_matrix, same_pattern, solved
+      logical :: same_matrix, same_pattern, solved, coupled
       real(wp) :: t0
       call sys%contact_matrix(model, contact, u, fixed, prescribed, fext, s%f, s%rebuilt, error)
       if (allocated(error)) return
@@ -304,7 +313,9 @@ contains
       if (same_matrix) same_matrix = same_key(sys%factored_key, contact)
       solved = .false.
       if (same_pattern .and. .not. same_matrix) then
-         if (near_key(sys%factored_key, contact, pairing_drift)) then
+         ! a small move of the pairing, or a few stick/slip changes alone
+         if (near_key(sys%factored_key, contact, pairing_drift) .or. &
+             flips_within(stick_flips(sys%factored_key, contact), max_stick_flips)) then
             call krylov_solve(s, sys, fixed, fext, u, contact, solved, error)
             if (allocated(error)) return
          end if
@@ -317,7 +328,10 @@ contains
          s%t_fact = wall_time() - t0
          sys%t_factorize = sys%t_factorize + s%t_fact
       end if
-      if (.not. solved .and. s%op%sliding) then
+      ! the unsymmetric parts the factor lacks (the sliding of the pairing, slipping
+      ! friction whose force follows the normal force): GMRES with the factor
+      coupled = contact%has_coupling()
+      if (.not. solved .and. (s%op%sliding .or. coupled)) then
          call krylov_solve(s, sys, fixed, fext, u, contact, solved, error)
          if (allocated(error)) return
       end if
@@ -326,6 +340,8 @@ contains
          ! sliding part was too strong for it: said in the log)
          if (s%op%sliding .and. present(log)) call log%say('        (Newton step on the pairing '// &
             'replaced by the frozen-pairing step: GMRES did not converge with the factor)')
+         if (coupled .and. present(log)) call log%say('        (friction''s coupling to the normal '// &
+            'force left to the next iteration: GMRES did not converge with the factor)')
          s%op%sliding = .false.
          call direct_solve(s, sys, fixed, fext, u, contact, error)
          if (allocated(error)) return
@@ -362,6 +378,7 @@ contains
       hold = hold_nodes(contact%active, gfrozen, contact%gap, s%held)
       call contact%update_active(s%nchanged, hold)
       s%held = hold .and. contact%active
+      call contact%update_friction(u, s%nslip)
       s%settled = s%nchanged == 0
       s%t_srch = wall_time() - t0
       sys%t_search = sys%t_search + s%t_srch
@@ -384,7 +401,7 @@ contains
       s%r = fext - s%ku - s%fc
       where (fixed) s%r = 0.0_wp
       s%rel = residual_norm(s%r, u, merge(0.0_wp, fext, fixed), s%fc, s%kmax, closed_stiffness(contact))
-      rec = iteration_record_t(s%it, count(contact%active), s%nchanged, s%rel, contact%max_penetration(), &
+      rec = iteration_record_t(s%it, count(contact%active), s%nchanged, s%nslip, s%rel, contact%max_penetration(), &
                                contact%max_pressure(), s%step, s%t_fact > 0.0_wp, s%rebuilt, wall_time() - s%t_iter)
       sys%records = [sys%records, rec]
       write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4,2x,f10.6,2x,f6.4)') s%it, &
@@ -394,15 +411,27 @@ contains
       s%gaps(:, s%it) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
    end subroutine record_iteration
 
-   !> Whether the iteration has converged; for HARD, after the augmented
-   !> Lagrangian's Uzawa update.
+   !> Whether the iteration has converged: no entry changed its normal or its
+   !> stick/slip state and the residual is small; for HARD and exact stick, after
+   !> the augmented Lagrangian's Uzawa updates, which must leave no overclosure, no
+   !> elastic slip and no force change beyond the tolerances.
    logical function has_converged(s, model, u, contact) result(converged)
       type(iteration_state_t), intent(inout) :: s
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:)
       type(contact_state_t), intent(inout) :: contact
-      real(wp) :: overclosure, change
-      if (s%nchanged == 0 .and. contact%has_hard()) then
+      real(wp) :: overclosure, change, tchange, elastic_slip
+      if (s%nchanged == 0 .and. (contact%has_hard() .or. contact%has_exact_friction())) then
+         overclosure = 0.0_wp
+         change = 0.0_wp
+         ! exact stick: the tangential counterpart, at the same iterations (the normal
+         ! forces its bounds depend on settle at the same time)
+         call contact%augment_friction(tchange, elastic_slip)
+         if (.not. contact%has_hard()) then
+            converged = s%nslip == 0 .and. s%rel <= model%controls%residual_tol .and. &
+                        elastic_slip <= model%controls%overclosure_tol .and. tchange <= model%controls%residual_tol
+            return
+         end if
          ! HARD: the augmented Lagrangian's Uzawa update, at every iteration that kept
          ! the active set (the pairing of finite sliding settles meanwhile, at the
          ! same time); converged once the solve left no overclosure beyond the
@@ -415,12 +444,19 @@ contains
          ! right-hand side changes.
          call contact%augment(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
                               16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), overclosure, change)
-         converged = s%rel <= model%controls%residual_tol .and. &
-                     overclosure <= model%controls%overclosure_tol .and. change <= model%controls%residual_tol
+         converged = s%nslip == 0 .and. s%rel <= model%controls%residual_tol .and. &
+                     overclosure <= model%controls%overclosure_tol .and. change <= model%controls%residual_tol .and. &
+                     elastic_slip <= model%controls%overclosure_tol .and. tchange <= model%controls%residual_tol
       else
-         converged = s%nchanged == 0 .and. s%rel <= model%controls%residual_tol
+         converged = s%nchanged == 0 .and. s%nslip == 0 .and. s%rel <= model%controls%residual_tol
       end if
    end function has_converged
+
+   !> 0 < m <= limit: a few stick/slip changes (stick_flips).
+   pure logical function flips_within(m, limit)
+      integer, intent(in) :: m, limit
+      flips_within = m > 0 .and. m <= limit
+   end function flips_within
 
    !> Stop when the iterates return to the active set and gaps of an earlier
    !> iteration (is_cycle).
@@ -522,6 +558,7 @@ contains
       ! evaluation (floors of 1e-15 to 1e-17 relative were logged): below it GMRES
       ! goes on only while it still halves the residual
       tol_abs = gmres_reduction*safe_norm2(s%r)
+      if (contact%has_coupling() .and. .not. s%op%sliding) tol_abs = gmres_reduction_friction*safe_norm2(s%r)
       floor_abs = 0.0_wp
       if (rel0 > 0.0_wp) floor_abs = 1.0e3_wp*epsilon(1.0_wp)*safe_norm2(s%r)/rel0
       allocate (dx(size(s%u0)), source=0.0_wp)
@@ -575,6 +612,7 @@ contains
       real(wp), intent(in) :: fext(:), u(:)
       type(contact_state_t), intent(in) :: contact
       real(wp), allocatable :: d(:), kd(:), g0(:), h(:)
+      real(wp) :: ta, tb
       t = 1.0_wp
       allocate (g0(contact%n), h(contact%n))
       call contact%frozen_gaps(s%u0, g0)
@@ -593,7 +631,9 @@ contains
       allocate (kd(size(d)))
       call sys%elastic_times(d, kd)
       call sys%elastic_times(s%u0, s%ku)
-      t = line_search_step(dot_product(d, s%ku - fext), dot_product(d, kd), contact%k, g0, h)
+      ! the frozen tangential forces along the step: linear (slip) and quadratic (stick) terms
+      call contact%tangential_line_terms(s%u0, d, ta, tb)
+      t = line_search_step(dot_product(d, s%ku - fext) + ta, dot_product(d, kd) + tb, contact%k, g0, h)
    end function energy_step
 
    !> Slave nodes that had a master segment at the start of the step and have none at

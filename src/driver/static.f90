@@ -28,6 +28,7 @@ module vemcontact_driver_static
    use vemcontact_output_print, only: has_print_requests, write_print_csv
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_friction, only: tangent_stick, tangent_slip
    use vemcontact_log, only: logger_t
    implicit none
    private
@@ -346,7 +347,8 @@ contains
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
-                                     pack(tab%status, tab%pair == ip_), error, sel)
+                                     pack(tab%status, tab%pair == ip_), error, sel, &
+                                     cshear=pack(tab%cshear, tab%pair == ip_))
                if (allocated(error)) return
             end do
             call h5%write_iterations(istep, sys%records, error)
@@ -355,6 +357,11 @@ contains
                ' slave nodes closed, max pressure ', contact%max_pressure(), ', max penetration ', &
                contact%max_penetration()
             call log%say(trim(buf))
+            if (contact%fric%on) then
+               write (buf, '(2x,a,i0,a,i0,a)') 'friction: ', contact%count_state(tangent_stick), ' stick, ', &
+                  contact%count_state(tangent_slip), ' slip'
+               call log%say(trim(buf))
+            end if
          end if
          if (has_print_requests(model, istep)) then
             ! *NODE PRINT, *EL PRINT, *CONTACT PRINT: CalculiX's JOB.dat as a CSV table

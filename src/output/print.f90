@@ -116,6 +116,7 @@ contains
                         call row(var, 'node', tab%node_id(n), var, tab%copen(n))
                      case ('CPRESS')
                         call row(var, 'node', tab%node_id(n), var, tab%cpress(n))
+                        if (allocated(tab%cshear)) call row('CSHEAR', 'node', tab%node_id(n), 'CSHEAR', tab%cshear(n))
                      case ('CSLIP')
                         call row(var, 'node', tab%node_id(n), var, tab%cslip(n))
                      end select
