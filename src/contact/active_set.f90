@@ -240,7 +240,8 @@ contains
          self%k(i) = self%pairs(self%pair(i))%slope*self%length(i)*self%thick(i)
          self%k_full(i) = self%k(i)
       end do
-      call init_friction(self, model)
+      call init_friction(self, model, error)
+      if (allocated(error)) return
       if (self%n == 0 .and. size(model%pairs) > 0) then
          call fatal_error(error, location_string(model, model%pairs(1)%loc)// &
                           ': error: the contact pairs have no slave nodes', err_input)
@@ -250,9 +251,14 @@ contains
    !> The tangential law of every pair and the tangential spring of every entry: the
    !> stick slope times the tributary area, or for exact stick the augmentation
    !> stiffness of HARD (hard_stiffness E/h, scaled by STIFFNESS SCALE FACTOR).
-   subroutine init_friction(self, model)
+   !> Friction with the finite sliding of NODE TO SURFACE (the pairing found anew at
+   !> every iteration) is refused: the stick/slip states and the re-pairing did not
+   !> settle together (a block pushed up an inclined joint cycled with LINEAR contact
+   !> and took 12 iterations with HARD), so the pair must keep its pairing.
+   subroutine init_friction(self, model, error)
       type(contact_state_t), intent(inout) :: self
       type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: error
       real(wp), allocatable :: slope(:)
       integer :: p, i
       allocate (self%fric%laws(size(self%pairs)), slope(size(self%pairs)))
@@ -261,6 +267,14 @@ contains
          associate (it => model%interactions(model%pairs(p)%interaction))
             call make_law(it%has_friction, it%rough, it%mu, it%stick_slope, it%cohesion, self%fric%laws(p))
          end associate
+         if (self%fric%laws(p)%law%frictional() .and. .not. self%pairs(p)%small_sliding) then
+            call append_message(error, location_string(model, model%pairs(p)%loc)//': error: friction '// &
+                                '(*FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING'//new_line('a')// &
+                                '  = help: write *CONTACT PAIR, INTERACTION=..., TYPE=NODE TO SURFACE, SMALL '// &
+                                'SLIDING (the pairing of the undeformed state, kept), or TYPE=SURFACE TO '// &
+                                'SURFACE; vemcontact does not combine friction with finite sliding', err_input)
+            cycle
+         end if
          slope(p) = self%fric%laws(p)%law%stick_slope()
          if (self%fric%laws(p)%law%exact() .and. self%pairs(p)%nslave > 0) then
             slope(p) = hard_stiffness*model%controls%stiffness_scale*self%pairs(p)%stiffness/ &
@@ -669,10 +683,13 @@ contains
    !> The return mapping of every entry's tangential law at u (after update_active):
    !> stick/slip states and forces for the next solve; nchanged counts the
    !> frictional entries whose state changed.
-   subroutine update_friction(self, u, nchanged)
+   subroutine update_friction(self, u, nchanged, closing_slips)
       class(contact_state_t), intent(inout) :: self
       real(wp), intent(in) :: u(:)
       integer, intent(out) :: nchanged
+      !> entries that close slip in the next solve (friction_state_t%update): within the
+      !> iteration, not at its start
+      logical, intent(in) :: closing_slips
       real(wp), allocatable :: sl(:), nf(:)
       integer :: i
       nchanged = 0
@@ -683,7 +700,8 @@ contains
          sl(i) = entry_slip(self, i, u)
          nf(i) = self%normal_force(i)
       end do
-      call self%fric%update(self%pair, sl, nf, self%active .and. self%iseg > 0, self%length*self%thick, nchanged)
+      call self%fric%update(self%pair, sl, nf, self%active .and. self%iseg > 0, self%length*self%thick, nchanged, &
+                            closing_slips)
    end subroutine update_friction
 
    !> Uzawa update of the exact-stick entries (friction_state_t%augment): the largest

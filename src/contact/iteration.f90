@@ -270,7 +270,7 @@ contains
       call contact%project(model, u, error)
       if (allocated(error)) return
       call contact%update_active(s%nchanged)
-      call contact%update_friction(u, s%nslip)
+      call contact%update_friction(u, s%nslip, .false.)
       sys%t_search = wall_time() - t0
       s%iseg_start = contact%iseg
       s%history(:, 0) = contact%active
@@ -303,7 +303,7 @@ contains
       ! Newton on the pairing once the active set holds: the tangent carries the
       ! part of finite sliding (sliding_tangent), which the factor lacks: GMRES with
       ! the factor as preconditioner solves with it
-      s%op%sliding = s%settled .and. contact%has_sliding()
+      s%op%sliding = s%settled .and. contact%has_sliding() .and. .not. contact%fric%on
       ! the matrix of the current factor: solve again without factorizing; a
       ! matrix that differs from it only by a small move of the pairing: the old
       ! factor as the preconditioner
@@ -378,7 +378,7 @@ contains
       hold = hold_nodes(contact%active, gfrozen, contact%gap, s%held)
       call contact%update_active(s%nchanged, hold)
       s%held = hold .and. contact%active
-      call contact%update_friction(u, s%nslip)
+      call contact%update_friction(u, s%nslip, .true.)
       s%settled = s%nchanged == 0
       s%t_srch = wall_time() - t0
       sys%t_search = sys%t_search + s%t_srch
