@@ -705,14 +705,17 @@ contains
    end subroutine update_friction
 
    !> Uzawa update of the exact-stick entries (friction_state_t%augment): the largest
-   !> change of a tangential force relative to the largest contact force, and the
-   !> largest elastic slip relative to the tributary length, from before the update.
-   subroutine augment_friction(self, change, elastic_slip)
+   !> change of a tangential force beyond `noise`, relative to the largest contact
+   !> force, and the largest elastic slip relative to the tributary length, from
+   !> before the update.
+   subroutine augment_friction(self, noise, change, elastic_slip)
       class(contact_state_t), intent(inout) :: self
+      !> force changes within this round-off of the equilibrium count as none
+      real(wp), intent(in) :: noise
       real(wp), intent(out) :: change, elastic_slip
       real(wp) :: fmax
       integer :: i
-      call self%fric%augment(self%pair, self%length, change, elastic_slip)
+      call self%fric%augment(self%pair, self%length, noise, change, elastic_slip)
       fmax = 0.0_wp
       do i = 1, self%n
          if (self%active(i)) fmax = max(fmax, self%normal_force(i), abs(self%fric%force(i)))

@@ -137,10 +137,12 @@ contains
    !> Uzawa update of the exact-stick entries (settle) at the current iterate.  Returns, from before the update, the largest tangential force
    !> change kt |s - anchor| of a sticking entry (what the update corrects) and its
    !> elastic slip |s - anchor| relative to `length` (the local element size).
-   pure subroutine augment(self, pair, length, change, elastic_slip)
+   pure subroutine augment(self, pair, length, noise, change, elastic_slip)
       class(friction_state_t), intent(inout) :: self
       integer, intent(in) :: pair(:)
       real(wp), intent(in) :: length(:)
+      !> the round-off of the forces: a change within it counts as none
+      real(wp), intent(in) :: noise
       real(wp), intent(out) :: change, elastic_slip
       integer :: i
       change = 0.0_wp
@@ -148,7 +150,7 @@ contains
       do i = 1, size(pair)
          if (.not. self%laws(pair(i))%law%exact()) cycle
          if (self%state(i) == tangent_stick) then
-            change = max(change, self%kt(i)*abs(self%slip(i) - self%anchor(i)))
+            change = max(change, self%kt(i)*abs(self%slip(i) - self%anchor(i)) - noise)
             elastic_slip = max(elastic_slip, abs(self%slip(i) - self%anchor(i))/length(i))
          end if
          call settle(self, i)
