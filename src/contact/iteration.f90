@@ -275,8 +275,10 @@ contains
       s%iseg_start = contact%iseg
       s%history(:, 0) = contact%active
       s%gaps(:, 0) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
+      ! with friction, a last column: the entries that changed between stick and slip
       if (present(log)) call log%say('  iter  active  changed     residual  max penetration  max pressure'// &
-                                     '    time [s]  factorize [s]  search [s]    step')
+                                     '    time [s]  factorize [s]  search [s]    step'// &
+                                     merge('  stick/slip', '            ', contact%fric%on))
    end subroutine start_iteration
 
    !> One solve with the contact frozen at the current pairing and active set: the
@@ -406,6 +408,7 @@ contains
       sys%records = [sys%records, rec]
       write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4,2x,f10.6,2x,f6.4)') s%it, &
          rec%active, s%nchanged, s%rel, rec%penetration, rec%pressure, rec%time, s%t_fact, s%t_srch, s%step
+      if (contact%fric%on) write (buf(len_trim(buf) + 1:), '(2x,i10)') s%nslip
       if (present(log)) call log%say(trim(buf))
       s%history(:, s%it) = contact%active
       s%gaps(:, s%it) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
