@@ -11,6 +11,7 @@ module vemcontact_model
    public :: dof_value_t, dload_t, string_t, source_loc_t
    public :: surface_t, interaction_t, contact_pair_t, contact_controls_t, output_request_t
    public :: find_set, location_string, output_requested, element_order, element_side
+   public :: amplitude_t
 
    !> Element topology
    integer, parameter, public :: etype_polygon = 1 !< VPE/VPS: any number of nodes
@@ -94,6 +95,9 @@ module vemcontact_model
       integer(ip) :: node = 0
       integer :: dof = 0          !< 1 = x, 2 = y
       real(wp) :: value = 0.0_wp
+      !> AMPLITUDE= of its keyword: index into model%amplitudes (the value times the
+      !> amplitude at the time), 0 = the step's AMPLITUDE=RAMP or STEP
+      integer :: amp = 0
    end type dof_value_t
 
    !> A distributed load on one element (*DLOAD).
@@ -104,7 +108,20 @@ module vemcontact_model
       real(wp) :: magnitude = 0.0_wp  !< g for GRAV; p for pressure (positive pushes inward);
                                       !< for HP the pressure at height dir(2)
       real(wp) :: dir(2) = 0.0_wp     !< unit direction for GRAV; for HP: (y of zero pressure, y of magnitude)
+      integer :: amp = 0              !< AMPLITUDE=: index into model%amplitudes, 0 = the step's ramp
    end type dload_t
+
+   !> *AMPLITUDE (CalculiX): a piecewise linear function of time through the points
+   !> (t(k), a(k)), constant beyond the first and the last point.  A load or boundary
+   !> condition naming it takes its value times the amplitude instead of the step's ramp.
+   type :: amplitude_t
+      character(len=:), allocatable :: name   !< upper case
+      real(wp), allocatable :: t(:), a(:)     !< times, increasing, and values
+      !> TIME=TOTAL TIME: t is the total time (sum of the earlier steps' periods plus the
+      !> step time), else the step time
+      logical :: total_time = .false.
+      type(source_loc_t) :: loc
+   end type amplitude_t
 
    !> *SURFACE: element sides (elem(k), side(k)) or nodes.
    type :: surface_t
@@ -201,6 +218,18 @@ module vemcontact_model
    type :: step_t
       character(len=:), allocatable :: name
       integer :: procedure = procedure_static
+      !> *STATIC data line (CalculiX): initial time increment, time period of the step,
+      !> minimum and maximum increment; without it one increment of the whole period 1.
+      !> dt_min 0: CalculiX's default, min(dt_initial, 1e-5 period)
+      real(wp) :: dt_initial = 1.0_wp, period = 1.0_wp, dt_min = 0.0_wp, dt_max = 1.0e30_wp
+      !> *STATIC, DIRECT: fixed increments dt_initial, no cut-back (the last increment
+      !> ends the step: shorter when dt_initial does not divide the period)
+      logical :: direct = .false.
+      !> *STEP, AMPLITUDE=RAMP (the default of *STATIC: loads and prescribed
+      !> displacements go linearly from their values at the end of the previous step to
+      !> the step's values) or AMPLITUDE=STEP (.false.: the step's values at once;
+      !> the default of *GEOSTATIC)
+      logical :: ramp = .true.
       logical :: boundary_new = .false.
       logical :: cload_new = .false.
       logical :: dload_new = .false.
@@ -247,6 +276,8 @@ module vemcontact_model
       !> boundary conditions and loads given before the first *STEP: they hold in every step
       type(step_t) :: initial
       type(step_t), allocatable :: steps(:)
+      !> *AMPLITUDE definitions, named by AMPLITUDE= on *BOUNDARY, *CLOAD, *DLOAD, *DSLOAD
+      type(amplitude_t), allocatable :: amplitudes(:)
       !> the linear solver named by *STATIC, SOLVER= (cholmod, gamg, hypre or mumps; one
       !> per run); unallocated when no step names one of them
       character(len=:), allocatable :: linear_solver

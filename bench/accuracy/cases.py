@@ -291,14 +291,15 @@ HERTZ_FAMILIES = ("vem-quad", "vem-quad+nts-hard", "vem-quad+s2s-hard", "fem-qua
 HERTZ_SCENE = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex2_hertz.toml")).read().split("[[variant]]")[0]
 
 
-def hertz(work, quick=False, families=HERTZ_FAMILIES):
+def hertz(work, quick=False, families=HERTZ_FAMILIES, only=None):
     """The paper's Hertz half model (inputs/hertz_*: materials, K = 1e5, load 100 at the
     top) on its mesh family (postprocess/scenes/ex2_hertz.toml, same gradings): the
     paper's 389, 600 and 1155-element meshes, then the divisions of the 600-element mesh
     times 2, 4 and 8 (bench/hertz_refined.toml's h20k and h100k are close to x3.3 and x7.5).
     Second order (k = 2 VEM, Q8; SURFACE TO SURFACE is refused on second-order sides): the
     same meshes with `order = 2`, the disc's arc side nodes on the circle (curved sides),
-    up to x4 (about 3 times the unknowns of the first-order mesh)."""
+    up to x4 (about 3 times the unknowns of the first-order mesh).  `only`: the level
+    names to make (all by default; the tests take the smallest)."""
     base_disc, base_block = (12, 12, 6), (16, 15)
     levels = [("389", (10, 10, 4), (13, 13)), ("600", base_disc, base_block),
               ("1155", (15, 15, 10), (24, 20))]
@@ -306,6 +307,8 @@ def hertz(work, quick=False, families=HERTZ_FAMILIES):
         levels.append((f"600x{s}", tuple(s * v for v in base_disc), tuple(s * v for v in base_block)))
     if quick:
         levels = levels[:3]
+    if only is not None:
+        levels = [lv for lv in levels if lv[0] in only]
     deck_text = open(os.path.join(meshes.ROOT, "inputs/hertz_1155_vem.inp")).read()
     for fam in families:
         base, variant = split_family(fam)
@@ -356,14 +359,17 @@ def interface_exact(hard=False):
     return IF_D / (2 / Ep + (0.0 if hard else 1 / IF_K))
 
 
-def interface(work, quick=False, families=IF_FAMILIES):
+def interface(work, quick=False, families=IF_FAMILIES, only=None):
     """The paper's interface (inputs/interface_*: two blocks [0,4]x[0,1] and [0,4]x[1,2]
     meshed independently, E = 1e9, nu = 0.3, K = 1e12, top moved by -0.1) with rollers
     on the sides (u_x = 0 on LEFT and RIGHT) so that the answer is known: a uniform
     pressure p = 0.1/(2/E' + 1/K).  The paper's decks clamp the top and bottom in x
-    and leave the sides free, which has end effects and no closed form."""
+    and leave the sides free, which has end effects and no closed form.  `only`: the
+    refinement factors to make (all by default)."""
     scene = open(os.path.join(meshes.ROOT, "postprocess/scenes/ex3_interface.toml")).read().split("[[variant]]")[0]
     ks = [1, 2, 4, 8, 16] if not quick else [1, 2]
+    if only is not None:
+        ks = [k for k in ks if k in only]
     for fam in families:
         base, variant = split_family(fam)
         shape = SHAPE[base]

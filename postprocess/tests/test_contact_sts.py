@@ -343,7 +343,7 @@ def test_hertz_hard(exe, tmp_path, pair_type, tol):
     contact point); and at most one numeric factorization per change of the active set,
     plus the first and the one where the springs stiffen from the search of the active
     set (K h/E = 10) to the augmentation (1e3 x scale): the multiplier updates only solve
-    again where the pairing is fixed."""
+    again where the pairing is fixed; at most 10 iterations."""
     peaks = []
     for scale in (0.1, 1.0, 100.0):
         cpress, copen, rec = hertz_hard(exe, tmp_path, pair_type, scale)
@@ -351,6 +351,8 @@ def test_hertz_hard(exe, tmp_path, pair_type, tol):
         assert -copen.min() <= 1e-10 * 0.05
         if pair_type == "SURFACE TO SURFACE":
             assert rec["factorized"].sum() <= 2 + np.count_nonzero(rec["changed"][:-1] > 0)
-            assert rec["factorized"][-1] == 0
+        # the multiplier step (conjugate gradients on the condensed compliance) leaves
+        # the gaps at round-off after one or two updates (issue 22: at most 10)
+        assert rec["iteration"].size <= 10
     assert abs(peaks[1] / 83.60 - 1) <= tol
     assert max(peaks) / min(peaks) - 1 <= 1e-8

@@ -86,7 +86,7 @@ def test_fields_per_step(runs):
     cell_s = {"S", "ERROR_INDICATOR"}
     h5_s = {"S_element", "S_node", "ERROR_INDICATOR"}
     want_vtu = [({"U"}, set()), ({"U"} | stress, cell_s), ({"RF"} | stress, cell_s)]
-    want_h5 = [{"U"}, {"U"} | h5_s, {"RF", "RF_total", "RF_sets"} | h5_s]
+    want_h5 = [{"U"}, {"U"} | h5_s, {"RF", "RF_total", "RF_sets", "LOAD_total"} | h5_s]
     for k in range(3):
         point, cell = vtu_fields(d / f"p_{k + 1:04d}.vtu")
         assert point == want_vtu[k][0] | LABELS_POINT, (k + 1, point)
@@ -109,7 +109,7 @@ def test_no_requests_writes_everything(runs):
         assert cell == {"S", "E", "ERROR_INDICATOR"} | LABELS_CELL
         steps, _ = h5_fields(d / "p.h5", f"{k:04d}")
         assert steps == {"U", "S_element", "S_node", "ERROR_INDICATOR", "E_element", "E_node", "RF", "RF_total",
-                         "RF_sets"}
+                         "RF_sets", "LOAD_total"}
     assert not list(d.glob("*_print_*.csv"))
 
 

@@ -81,6 +81,7 @@ module vemcontact_contact_active_set
       integer :: nslave = 0
       real(wp) :: radius = 0.0_wp             !< search radius: twice the longest master segment
       real(wp) :: slope = 0.0_wp              !< penalty slope K of the interaction
+      real(wp) :: h = 0.0_wp                  !< median master segment length
       !> smallest E * thickness of the elements of the slave nodes and master segments
       real(wp) :: stiffness = 0.0_wp
       logical :: small_sliding = .false.      !< pairing fixed at the undeformed state
@@ -144,6 +145,12 @@ module vemcontact_contact_active_set
       procedure :: frozen_gaps
       procedure :: has_hard
       procedure :: augment
+      procedure :: gap_noise
+      procedure :: multiplier_entries
+      procedure :: multiplier_load
+      procedure :: gap_change
+      procedure :: has_finite_sliding
+      procedure :: penalty_ratio
       procedure :: start_state
       procedure :: normal_force
       procedure :: set_balanced
@@ -211,6 +218,7 @@ contains
          end do
          self%pairs(p)%slope = model%interactions(model%pairs(p)%interaction)%penalty
          self%pairs(p)%stiffness = pair_stiffness(model, seg_elem, node)
+         if (nseg > 0) self%pairs(p)%h = median_length(model, seg)
          if (model%interactions(model%pairs(p)%interaction)%hard .and. size(node) > 0) then
             self%pairs(p)%hard = .true.
             self%pairs(p)%search_ratio = min(1.0_wp, hard_search_ratio/model%controls%stiffness_scale)
@@ -924,20 +932,21 @@ contains
       end do
    end function has_hard
 
-   !> Uzawa update of the HARD entries, lambda <- max(0, lambda - k g), after a solve
-   !> whose active set held.  Returns, from before the update, the largest overclosure
-   !> of the HARD entries relative to their tributary length (the local element size;
-   !> 0 when none overclose) and the largest change k |g| of a force relative to the
-   !> largest force: the relative error of the pressures that the update corrects.
-   !> Gaps within their round-off count as closed, a stiff augmentation cannot correct
-   !> below it: `noise_u` from the displacements, plus `noise_x` from the coordinates
-   !> for an entry whose reference gap is not exactly zero (a node facing a segment
-   !> between its ends; nodes that coincide have g0 = 0 exactly, gap0_roundoff).
-   subroutine augment(self, noise_u, noise_x, overclosure, change)
+   !> The multiplier update of the HARD entries after a solve whose active set held,
+   !> lambda <- max(0, lambda + dlam) with the step `dlam` of multiplier_step
+   !> (vemcontact_contact_iteration: the gaps' equation solved by conjugate gradients
+   !> on the condensed compliance, whose first iterate is the plain Uzawa update
+   !> dlam = -k g at its best length).  Inactive entries get 0, and the springs of
+   !> the search stiffen to the augmentation (k_full).  Returns, from before the
+   !> update, the largest overclosure beyond the round-off `noise` (gap_noise)
+   !> relative to the tributary length (0 when none overclose) and the largest
+   !> change |dlam| of a force relative to the largest force: the relative error of
+   !> the pressures that the update corrects.
+   subroutine augment(self, noise, dlam, overclosure, change)
       class(contact_state_t), intent(inout) :: self
-      real(wp), intent(in) :: noise_u, noise_x
+      real(wp), intent(in) :: noise(:), dlam(:)
       real(wp), intent(out) :: overclosure, change
-      real(wp) :: fmax, noise
+      real(wp) :: fmax
       integer :: i
       overclosure = 0.0_wp
       change = 0.0_wp
@@ -945,18 +954,123 @@ contains
       do i = 1, self%n
          if (.not. self%pairs(self%pair(i))%hard .or. self%iseg(i) == 0) cycle
          if (self%active(i)) then
-            noise = noise_u
-            if (abs(self%gap0(i)) > 0.0_wp) noise = noise + noise_x
-            overclosure = max(overclosure, (-self%gap(i) - noise)/self%length(i))
-            change = max(change, self%k(i)*max(abs(self%gap(i)) - noise, 0.0_wp))
+            overclosure = max(overclosure, (-self%gap(i) - noise(i))/self%length(i))
+            change = max(change, abs(dlam(i)))
             fmax = max(fmax, self%normal_force(i))
+            self%lambda(i) = max(0.0_wp, self%lambda(i) + dlam(i))
+         else
+            self%lambda(i) = 0.0_wp
          end if
-         self%lambda(i) = max(0.0_wp, self%lambda(i) - self%k(i)*self%gap(i))
-         if (.not. self%active(i)) self%lambda(i) = 0.0_wp
          self%k(i) = self%k_full(i)
       end do
       if (fmax > 0.0_wp) change = change/fmax
    end subroutine augment
+
+   !> The round-off of each entry's gap, below which a gap counts as zero: a stiff
+   !> augmentation cannot correct below it.  `noise_u` from the displacements, plus
+   !> `noise_x` from the coordinates for an entry whose reference gap is not exactly
+   !> zero (a node facing a segment between its ends; nodes that coincide have g0 = 0
+   !> exactly, gap0_roundoff), plus the forward error of the solve: the elastic
+   !> forces carry the round-off `noise_f` (eps times the largest elastic diagonal
+   !> times the largest displacement), which moves a gap by at most noise_f / k, the
+   !> compliance of the entry being below that of its spring alone.  The last term
+   !> decides with a stiffness contrast: a stiff body resting on a soft one carries
+   !> a rigid motion 1/contrast times larger than its strain, whose round-off
+   !> reaches the gaps (1e-16 of a gap of 1e-3 at contrast 1e6,
+   !> docs/contact-robustness.md).
+   pure function gap_noise(self, noise_u, noise_x, noise_f) result(noise)
+      class(contact_state_t), intent(in) :: self
+      real(wp), intent(in) :: noise_u, noise_x, noise_f
+      real(wp) :: noise(self%n)
+      integer :: i
+      do i = 1, self%n
+         noise(i) = noise_u
+         if (abs(self%gap0(i)) > 0.0_wp) noise(i) = noise(i) + noise_x
+         if (self%k(i) > 0.0_wp) noise(i) = noise(i) + noise_f/self%k(i)
+      end do
+   end function gap_noise
+
+   !> The entries whose multipliers an update moves: active HARD entries with a
+   !> master segment.
+   pure function multiplier_entries(self) result(mask)
+      class(contact_state_t), intent(in) :: self
+      logical :: mask(self%n)
+      integer :: i
+      do i = 1, self%n
+         mask(i) = self%active(i) .and. self%iseg(i) > 0 .and. self%pairs(self%pair(i))%hard
+      end do
+   end function multiplier_entries
+
+   !> f = f + sum dlam A^T n over the entries of `mask` at the current pairing: the
+   !> right-hand side that the multipliers' change dlam adds (add_rhs).
+   subroutine multiplier_load(self, mask, dlam, f)
+      class(contact_state_t), intent(in) :: self
+      logical, intent(in) :: mask(:)
+      real(wp), intent(in) :: dlam(:)
+      real(wp), intent(inout) :: f(:)
+      integer :: i
+      do i = 1, self%n
+         if (.not. mask(i)) cycle
+         call scatter(f, nodes_of(self, i), dlam(i)*matmul(self%normal(:, i), relative_map(self%xi(i))))
+      end do
+   end subroutine multiplier_load
+
+   !> dg = n.A(xi) du for the entries of `mask` at the current pairing (0 elsewhere):
+   !> the change of their frozen gaps by the displacements du; with `sliding`, minus
+   !> c dxi, the part that the motion of the projection adds (finite sliding:
+   !> dxi = w.du, c = n.t; sliding_tangent is the force of it).
+   pure subroutine gap_change(self, mask, du, dg, sliding)
+      class(contact_state_t), intent(in) :: self
+      logical, intent(in) :: mask(:)
+      real(wp), intent(in) :: du(:)
+      real(wp), intent(out) :: dg(:)
+      logical, intent(in) :: sliding
+      integer(ip) :: nodes(3)
+      real(wp) :: ve(6)
+      integer :: i, j
+      do i = 1, self%n
+         dg(i) = 0.0_wp
+         if (.not. mask(i)) cycle
+         dg(i) = frozen_gap(self, i, du) - self%gap0(i)
+         if (.not. sliding) cycle
+         nodes = nodes_of(self, i)
+         do j = 1, 3
+            ve(2*j - 1:2*j) = du(2*nodes(j) - 1:2*nodes(j))
+         end do
+         dg(i) = dg(i) - self%slide_c(i)*dot_product(self%slide_w(:, i), ve)
+      end do
+   end subroutine gap_change
+
+   !> Whether a pair re-pairs its nodes at every iteration (NODE TO SURFACE with
+   !> finite sliding, the default), as the help of a run that does not converge says.
+   pure logical function has_finite_sliding(self)
+      class(contact_state_t), intent(in) :: self
+      integer :: p
+      has_finite_sliding = .false.
+      do p = 1, size(self%pairs)
+         has_finite_sliding = has_finite_sliding .or. (.not. self%pairs(p)%small_sliding .and. &
+                                                       .not. self%pairs(p)%node_to_node .and. &
+                                                       self%pairs(p)%nslave > 0)
+      end do
+   end function has_finite_sliding
+
+   !> The largest penalty slope of a LINEAR pair with finite sliding relative to its
+   !> bodies, K h / E (h the median master segment, E t the pair's smallest modulus
+   !> times thickness, over the largest slave thickness), 0 when there is none.
+   pure real(wp) function penalty_ratio(self) result(r)
+      class(contact_state_t), intent(in) :: self
+      integer :: p, i
+      r = 0.0_wp
+      do p = 1, size(self%pairs)
+         associate (pd => self%pairs(p))
+            if (pd%hard .or. pd%small_sliding .or. pd%node_to_node .or. pd%nslave == 0) cycle
+            if (pd%stiffness <= 0.0_wp) cycle
+            do i = pd%first + 1, pd%first + pd%nslave
+               if (self%length(i) > 0.0_wp) r = max(r, self%k(i)/self%length(i)*pd%h/pd%stiffness)
+            end do
+         end associate
+      end do
+   end function penalty_ratio
 
    !> Start a load state: the springs of HARD entries soften to K h/E = 10 (their
    !> pair's search_ratio) for the search of the active set (augment stiffens

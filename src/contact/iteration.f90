@@ -20,9 +20,10 @@ module vemcontact_contact_iteration
                                        hold_nodes, is_cycle, conditioning_verdict, &
                                        conditioning_hint, residual_norm, cond_ok, cond_warn, &
                                        near_key, pairing_drift, stick_flips, max_stick_flips, &
-                                       cond_stop, cond_stop_penalty
+                                       cond_stop, cond_stop_penalty, nonconvergence_hint, multiplier_cg_limit
    use vemcontact_linalg_gmres, only: linear_operator_t, gmres, gmres_result_t
    use vemcontact_linalg_norms, only: safe_norm2
+   use vemcontact_linalg_cg, only: pcg, cg_result_t
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    implicit none
@@ -42,6 +43,9 @@ module vemcontact_contact_iteration
    !> direct solve's refinement does (at 1e-6 the slip patch test stopped at 1e-7 of
    !> the stresses, within the residual tolerance)
    real(wp), parameter :: gmres_reduction_friction = 1.0e-14_wp
+   !> ... and a product by the compliance with finite sliding (compliance_apply): the
+   !> stiff modes that the multiplier step resolves are 1e-3 to 1e-6 of the soft ones
+   real(wp), parameter :: multiplier_reduction = 1.0e-10_wp
 
    !> One iteration, as logged and written to the results.
    type :: iteration_record_t
@@ -132,6 +136,20 @@ module vemcontact_contact_iteration
       end function kmax_i
    end interface
 
+   !> The condensed compliance S = A M^-1 A^T of the HARD entries at the system's
+   !> current factor M (multiplier_step), preconditioned by their springs k.
+   type, extends(linear_operator_t) :: compliance_t
+      class(contact_system_t), pointer :: sys => null()
+      type(contact_state_t), pointer :: contact => null()
+      logical, pointer :: fixed(:) => null()
+      logical, allocatable :: mask(:)
+      !> the solves are Newton steps on the pairing of finite sliding (contact_tangent_t)
+      logical :: sliding = .false.
+   contains
+      procedure :: apply => compliance_apply
+      procedure :: precondition => compliance_precondition
+   end type compliance_t
+
    !> The tangent of the contact iteration on the free dofs (identity on the fixed
    !> ones): the elastic stiffness, the contact springs and, for a Newton step on the
    !> pairing of finite sliding, the sliding part; preconditioned by the system's
@@ -209,6 +227,7 @@ contains
       type(iteration_state_t) :: s
       character(len=160) :: buf
       integer :: it
+      logical :: converged
 
       call start_iteration(s, sys, model, fixed, u, contact, error, log)
       if (allocated(error)) return
@@ -221,7 +240,9 @@ contains
          call update_contact(s, sys, model, u, contact, error)
          if (allocated(error)) return
          call record_iteration(s, sys, fixed, fext, u, contact, log)
-         if (has_converged(s, model, u, contact)) then
+         converged = has_converged(s, sys, model, fixed, u, contact, error)
+         if (allocated(error)) return
+         if (converged) then
             call contact%commit_friction()
             call contact%set_balanced(model, s%ku - fext, fixed)
             call report_slid_off(s, model, contact, log)
@@ -232,10 +253,8 @@ contains
       end do
       write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations did not converge in ', s%maxit, &
          ' iterations (relative residual ', s%rel, ')'
-      call fatal_error(error, trim(buf)//'; raise MAXIT on *CONTACT CONTROLS or check the penalty'// &
-                       new_line('a')//'  = help: node-to-segment contact with finite sliding re-pairs the '// &
-                       'nodes at every iteration and can alternate where they face master vertices; '// &
-                       'TYPE=SURFACE TO SURFACE (VEM bodies) or SMALL SLIDING keep the pairing fixed', err_solver)
+      call fatal_error(error, trim(buf)//nonconvergence_hint(contact%has_finite_sliding(), contact%has_hard(), &
+                                                             contact%penalty_ratio()), err_solver)
    end subroutine solve_contact
 
    !> The iteration's start: counters and work arrays, and the pairing and active set
@@ -418,38 +437,52 @@ contains
    !> stick/slip state and the residual is small; for HARD and exact stick, after
    !> the augmented Lagrangian's Uzawa updates, which must leave no overclosure, no
    !> elastic slip and no force change beyond the tolerances.
-   logical function has_converged(s, model, u, contact) result(converged)
+   logical function has_converged(s, sys, model, fixed, u, contact, error) result(converged)
       type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout), target :: sys
       type(model_t), intent(in) :: model
+      logical, intent(in), target :: fixed(:)
       real(wp), intent(in) :: u(:)
-      type(contact_state_t), intent(inout) :: contact
+      type(contact_state_t), intent(inout), target :: contact
+      type(error_t), allocatable, intent(out) :: error
       real(wp) :: overclosure, change, tchange, elastic_slip
+      real(wp), allocatable :: noise(:), dlam(:)
+      converged = .false.
       if (s%nchanged == 0 .and. (contact%has_hard() .or. contact%has_exact_friction())) then
          overclosure = 0.0_wp
          change = 0.0_wp
          ! exact stick: the tangential counterpart, at the same iterations (the normal
-         ! forces its bounds depend on settle at the same time)
-         ! (a change within a few times the residual force left by the solve is its
-         ! round-off: on the dam, K = 1e13 Pa/m, the exact-stick updates settled at
-         ! 2.5e-5 N of 1e5 N, the size of the residual, and would never stop)
+         ! forces its bounds depend on settle at the same time); a change within a few
+         ! times the residual force left by the solve is its round-off (on the dam, K =
+         ! 1e13 Pa/m, the exact-stick updates settled at 2.5e-5 N of 1e5 N, the size of
+         ! the residual, and would never stop)
          call contact%augment_friction(4.0_wp*maxval(abs(s%r)), tchange, elastic_slip)
          if (.not. contact%has_hard()) then
             converged = s%nslip == 0 .and. s%rel <= model%controls%residual_tol .and. &
                         elastic_slip <= model%controls%overclosure_tol .and. tchange <= model%controls%residual_tol
             return
          end if
-         ! HARD: the augmented Lagrangian's Uzawa update, at every iteration that kept
-         ! the active set (the pairing of finite sliding settles meanwhile, at the
-         ! same time); converged once the solve left no overclosure beyond the
-         ! tolerance and the update would change no force by more than the residual
-         ! tolerance (the pressures' accuracy).  The gaps' round-off is excluded: a
-         ! few ulps of the coordinates (the reference gaps) and of the displacements;
-         ! on the dam (coordinates 25 m, K = 4e13 Pa/m) it is worth 1e-6 of the
-         ! forces, which the updates only stir.  Where the pairing is fixed (SMALL
-         ! SLIDING, SURFACE TO SURFACE) the matrix then holds and only the
-         ! right-hand side changes.
-         call contact%augment(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
-                              16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), overclosure, change)
+         ! HARD: the augmented Lagrangian's multiplier update (multiplier_step), at
+         ! every iteration that kept the active set (the pairing of finite sliding
+         ! settles meanwhile, at the same time); converged once the solve left no
+         ! overclosure beyond the tolerance and the update changed no force by more
+         ! than the residual tolerance (the pressures' accuracy).  The gaps' round-off
+         ! is excluded (gap_noise): a few ulps of the coordinates (the reference
+         ! gaps) and of the displacements, and the forward error of the solve, from
+         ! the elastic forces' round-off: the residual left, at most eps max K_ii
+         ! max|u|, with a margin of 128 (at contrast 1e6 the gaps settled at 0.8 of
+         ! 16 times it; docs/contact-robustness.md).  On the dam (coordinates 25 m, K
+         ! = 4e13 Pa/m) the gaps' round-off is worth 1e-6 of the forces, which the
+         ! updates only stir.
+         ! Where the pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE) the matrix
+         ! then holds and only the right-hand side changes.
+         allocate (dlam(contact%n))
+         noise = contact%gap_noise(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
+                                   16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), &
+                                   128.0_wp*min(maxval(abs(s%r)), epsilon(1.0_wp)*s%kmax*maxval(abs(u))))
+         call multiplier_step(sys, contact, fixed, noise, dlam, error)
+         if (allocated(error)) return
+         call contact%augment(noise, dlam, overclosure, change)
          converged = s%nslip == 0 .and. s%rel <= model%controls%residual_tol .and. &
                      overclosure <= model%controls%overclosure_tol .and. change <= model%controls%residual_tol .and. &
                      elastic_slip <= model%controls%overclosure_tol .and. tchange <= model%controls%residual_tol
@@ -672,6 +705,91 @@ contains
       call log%say('  = help: extend the master surface beyond the slave''s, or, when the sliding is '// &
                    'small, use SMALL SLIDING or TYPE=SURFACE TO SURFACE (pairing fixed at the start)')
    end subroutine report_slid_off
+
+   !> The multipliers' step dlam of the HARD entries (vemcontact_contact_active_set,
+   !> augment) that closes their gaps g with the pairing and active set of the last
+   !> solve: S dlam = -g, S = A M^-1 A^T the condensed compliance of the entries at
+   !> the current factor M (the elastic stiffness and the springs), A the rows n.A(xi)
+   !> of the gaps.  Solved by conjugate gradients preconditioned with the springs k
+   !> (each product by S is one solve with the factor), whose first iterate is the
+   !> plain Uzawa update -k g at its best length.  Uzawa alone divides the error of a
+   !> pressure mode by 1 + k c, c its compliance, which is slow for the modes that
+   !> the stiffer body carries (c of the stiff body, k of the soft one: 1.35 per
+   !> update on a curved soft master under a stiff slave, 1.001 at contrast 1e6);
+   !> conjugate gradients solve these few modes in as many steps
+   !> (docs/contact-formulation.md).  Gaps within `noise` (gap_noise) count as zero;
+   !> the iteration stops when every residual gap is within its noise, when the
+   !> compliance has no positive curvature left (round-off), or after
+   !> multiplier_cg_limit products.
+   subroutine multiplier_step(sys, contact, fixed, noise, dlam, error)
+      class(contact_system_t), intent(inout), target :: sys
+      type(contact_state_t), intent(in), target :: contact
+      logical, intent(in), target :: fixed(:)
+      real(wp), intent(in) :: noise(:)
+      real(wp), intent(out) :: dlam(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(compliance_t) :: op
+      type(cg_result_t) :: res
+      real(wp), allocatable :: b(:)
+      op%sys => sys
+      op%contact => contact
+      op%fixed => fixed
+      op%mask = contact%multiplier_entries()
+      op%sliding = contact%has_sliding()
+      ! -g, without the gaps within their round-off
+      b = merge(-contact%gap, 0.0_wp, op%mask .and. abs(contact%gap) > noise)
+      call pcg(op, b, noise, multiplier_cg_limit, dlam, res, error)
+   end subroutine multiplier_step
+
+   !> S v = A M^-1 A^T v on the entries of `mask` (0 elsewhere), one solve with the
+   !> system's current factor M; with `sliding`, S v = A' J^-1 A^T v with the Newton
+   !> tangent J of the pairing (GMRES preconditioned by the factor, as the solves of
+   !> the iteration) and the gaps' change A' with the projection's motion: the
+   !> stiff modes of a curved master are sensitive to it (3.6 per update without it
+   !> on the soft disc under a stiff block, docs/contact-robustness.md).
+   subroutine compliance_apply(self, x, y)
+      class(compliance_t), intent(inout) :: self
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      type(error_t), allocatable :: error
+      type(contact_tangent_t) :: jt
+      type(gmres_result_t) :: res
+      real(wp), allocatable :: w(:), du(:)
+      logical :: solved
+      allocate (w(size(self%fixed)), source=0.0_wp)
+      allocate (du(size(self%fixed)), source=0.0_wp)
+      call self%contact%multiplier_load(self%mask, x, w)
+      where (self%fixed) w = 0.0_wp
+      solved = .false.
+      if (self%sliding) then
+         jt%sys => self%sys
+         jt%contact => self%contact
+         jt%fixed => self%fixed
+         jt%sliding = .true.
+         call gmres(jt, w, du, multiplier_reduction*safe_norm2(w), 0.0_wp, gmres_restart, gmres_maxit, &
+                    0.5_wp, res, error)
+         solved = res%converged .and. .not. allocated(error)
+         if (allocated(error)) deallocate (error)
+      end if
+      if (.not. solved) then
+         du = 0.0_wp
+         call self%sys%solve_system(w, du, error)
+         ! a failed solve (the factor solved this system just before) gives no curvature:
+         ! the conjugate gradients stop at their last iterate
+         if (allocated(error)) du = 0.0_wp
+      end if
+      where (self%fixed) du = 0.0_wp
+      call self%contact%gap_change(self%mask, du, y, solved)
+   end subroutine compliance_apply
+
+   !> y = k x: the plain Uzawa update as the preconditioner.
+   subroutine compliance_precondition(self, x, y, error)
+      class(compliance_t), intent(inout) :: self
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      type(error_t), allocatable, intent(out) :: error
+      y = merge(self%contact%k*x, 0.0_wp, self%mask)
+   end subroutine compliance_precondition
 
    !> Stop when a factor is too ill-conditioned to trust, warn (once: `warned`) when it
    !> costs accuracy (conditioning_verdict); `ratio` is the stiffest closed spring

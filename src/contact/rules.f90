@@ -7,7 +7,8 @@
 !> * `conditioning_verdict`: when the factor is too ill-conditioned to trust;
 !> * `residual_norm`: the convergence measure;
 !> * `matrix_key_t`, `key_of`, `same_key`: when the factor can be reused;
-!> * `near_key`: when the factor of a nearby pairing can serve as a solver.
+!> * `near_key`: when the factor of a nearby pairing can serve as a solver;
+!> * `nonconvergence_hint`: what a run that did not converge can change.
 !>
 !> docs/contact-robustness.md tells how each was found and measured.
 module vemcontact_contact_rules
@@ -20,7 +21,7 @@ module vemcontact_contact_rules
 
    public :: line_search_step, needs_line_search, hold_nodes, is_cycle
    public :: conditioning_verdict, conditioning_hint, residual_norm
-   public :: matrix_key_t, key_of, same_key, near_key, stick_flips
+   public :: matrix_key_t, key_of, same_key, near_key, stick_flips, nonconvergence_hint
 
    !> CHOLMOD's reciprocal condition estimate below which results lose accuracy
    !> (relative errors of about eps/rcond: 1e-7 and worse) and a warning is logged,
@@ -51,6 +52,23 @@ module vemcontact_contact_rules
    !> preconditioner of GMRES (near_key): the contact matrix then differs by at most
    !> this fraction of the springs; GMRES stalls early where that is too much.
    real(wp), parameter, public :: pairing_drift = 0.1_wp
+
+   !> The most products by the condensed compliance (one solve with the factor each)
+   !> of one multiplier step of HARD contact (multiplier_step of
+   !> vemcontact_contact_iteration).  In exact arithmetic conjugate gradients end
+   !> after as many steps as the compliance has distinct eigenvalues; the modes that
+   !> the springs dominate (k c >> 1) cluster near 1/k, and only the few that a
+   !> stiffer body carries stand apart: 1-6 steps were measured on the decks of
+   !> docs/contact-robustness.md.  The limit only caps a step that round-off keeps
+   !> from ending: the outer iteration goes on from where it stopped.
+   integer, parameter, public :: multiplier_cg_limit = 30
+   !> K h/E of a LINEAR pair with finite sliding above which the contact iteration
+   !> may need more than 10 iterations: on the paper's seven interface decks (free
+   !> sides, the blocks slide) 4-6 iterations up to 1e5, 5-12 at 1e6, 6-17 at 1e7,
+   !> 12-37 or none at 1e8, against 7-8 with HARD (docs/contact-robustness.md, "Stiff
+   !> penalties with finite sliding"): the help of a run that did not converge
+   !> recommends HARD above it.
+   real(wp), parameter, public :: sliding_penalty_limit = 1.0e5_wp
 
    !> conditioning_verdict: trust the factor, warn (once), stop
    integer, parameter, public :: cond_ok = 0, cond_warn = 1, cond_stop = 2, cond_stop_penalty = 3
@@ -215,6 +233,32 @@ contains
           'elastic stiffness entry; lower the penalty slope K on *SURFACE BEHAVIOR (K*h/E of 10 to 1e4 '// &
           'already keeps the overclosure below 1e-4 of the element size h), or use PRESSURE-OVERCLOSURE=HARD'
    end function conditioning_hint
+
+   !> The help of a run whose contact iteration did not converge within MAXIT, naming
+   !> only what the run can change: a run with finite sliding (`sliding`: NODE TO
+   !> SURFACE without SMALL SLIDING) can fix its pairing; a LINEAR penalty with
+   !> finite sliding stiffer than sliding_penalty_limit (`ratio`, K h/E) can be
+   !> replaced by HARD; HARD (`hard`) can be given a stiffer augmentation.
+   pure function nonconvergence_hint(sliding, hard, ratio) result(s)
+      logical, intent(in) :: sliding, hard
+      real(wp), intent(in) :: ratio
+      character(len=:), allocatable :: s
+      character(len=16) :: b
+      s = '; raise MAXIT on *CONTACT CONTROLS'
+      if (sliding) s = s//new_line('a')//'  = help: node-to-segment contact with finite sliding re-pairs '// &
+                       'the nodes at every iteration and can alternate where they face master vertices; '// &
+                       'TYPE=SURFACE TO SURFACE (VEM bodies) or SMALL SLIDING keep the pairing fixed'
+      if (ratio > sliding_penalty_limit) then
+         write (b, '(es9.2)') ratio
+         s = s//new_line('a')//'  = help: the penalty slope is K h/E = '//trim(adjustl(b))//'; with finite '// &
+             'sliding the iteration takes at most about 10 iterations up to K h/E = 1e5 and more '// &
+             'beyond: lower K, or use PRESSURE-OVERCLOSURE=HARD (no overclosure, 7-8 iterations '// &
+             'on such interfaces)'
+      end if
+      if (hard) s = s//new_line('a')//'  = help: PRESSURE-OVERCLOSURE=HARD updates its multipliers at '// &
+                    'every iteration; a larger STIFFNESS SCALE FACTOR on *CONTACT CONTROLS makes each '// &
+                    'update correct more'
+   end function nonconvergence_hint
 
    !> Normwise backward error |r| / (|K| |u| + |f| + |f_c|) of the equilibrium, with |K|
    !> estimated by the largest elastic diagonal entry kmax plus the stiffest closed

@@ -7,7 +7,7 @@ module vemcontact_deck_finish
    use vemcontact_model, only: model_t, source_loc_t, string_t, etype_polygon, etype_polygon2, form_vem, form_fem, &
                                element_order
    use vemcontact_deck_state, only: deck_parser_t, err_at, loc_str
-   use vemcontact_deck_loads, only: end_step, acc_to_step
+   use vemcontact_deck_loads, only: end_step, acc_to_step, trim_steps
    use vemcontact_deck_contact, only: finish_contact
    use vemcontact_deck_idmap, only: sort_unique
    use vemcontact_deck_fields, only: int_str, edit_distance
@@ -48,7 +48,7 @@ contains
       call finish_contact(p, model)
       call acc_to_step(p%init, model%initial)
       model%initial%name = 'initial'
-      if (p%nstep == 0) allocate (model%steps(0))
+      call trim_steps(p, model)
       ! after other errors (a failed *INCLUDE, a skipped block) these would be noise
       if (p%diag%count > 0) return
       if (model%nnode == 0) call p%diag%report(path, 0, 'the deck defines no nodes (*NODE)')

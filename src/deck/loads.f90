@@ -21,7 +21,7 @@ module vemcontact_deck_loads
    private
 
    public :: read_heading, read_boundary, read_cload, read_dload, start_step, read_procedure, end_step
-   public :: acc_to_step, field_nodes, field_elems, get_op
+   public :: acc_to_step, field_nodes, field_elems, get_op, trim_steps
 
 contains
 
@@ -438,20 +438,22 @@ contains
       else
          p%cur%name = 'Step-'//int_str(p%nstep + 1)
       end if
-      if (has_param(kw, 'INC')) continue   ! accepted: a linear step needs one increment
+      if (has_param(kw, 'INC')) continue   ! accepted: the increments have no count limit
+      call get_param(kw, 'AMPLITUDE', val, found)
+      if (found) p%cur%ramp = val /= 'STEP'
    end subroutine start_step
 
-   !> *STATIC [, SOLVER=...] or, with `geostatic`, *GEOSTATIC (Abaqus): the procedure of the
-   !> step, exactly one per step.  The optional data line (time increments) is checked and ignored.
-   !> SOLVER= names the run's linear solver (read_solver).
+   !> *STATIC [, SOLVER=...] [, DIRECT] or, with `geostatic`, *GEOSTATIC (Abaqus): the
+   !> procedure of the step, exactly one per step.  The optional data line of *STATIC
+   !> gives the increments (read_increments); *GEOSTATIC's is checked and ignored (the
+   !> geostatic step is one increment).  SOLVER= names the run's linear solver (read_solver).
    subroutine read_procedure(p, geostatic, model, kw)
       type(deck_parser_t), intent(inout) :: p
       logical, intent(in) :: geostatic
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
-      integer :: k, nline
-      real(wp) :: v
-      logical :: ok, found
+      integer :: nline
+      logical :: found
       character(len=:), allocatable :: kname, other, val
       character(len=*), parameter :: one = 'a step has exactly one procedure: *STATIC, or *GEOSTATIC in the first step'
       if (geostatic) then
@@ -480,6 +482,7 @@ contains
       p%procedure_seen = .true.
       call get_param(kw, 'SOLVER', val, found)
       if (found) call read_solver(p, model, val)
+      if (.not. geostatic) p%cur%direct = has_param(kw, 'DIRECT')
       nline = 0
       do
          call advance(p)
@@ -492,12 +495,70 @@ contains
             call err_here(p, 'too many fields on the '//kname//' data line: expected at most 4 time values')
             cycle
          end if
-         do k = 1, p%f%n
-            call get_real(p, k, 'time increment value', v, ok)
-            if (.not. ok) exit
-         end do
+         call read_increments(p, geostatic)
       end do
    end subroutine read_procedure
+
+   !> The *STATIC data line (CalculiX): initial time increment (default 1), time period
+   !> of the step (default 1), minimum increment (default min(initial, 1e-5 period)),
+   !> maximum increment (default 1e30); empty fields take the default.  Every value
+   !> given must be positive, the minimum at most the initial increment, the maximum at
+   !> least the initial increment.  An initial increment beyond the period is the period
+   !> (CalculiX); with DIRECT, increments that do not divide the period end with a shorter
+   !> one (warned of).
+   subroutine read_increments(p, geostatic)
+      type(deck_parser_t), intent(inout) :: p
+      logical, intent(in) :: geostatic
+      real(wp) :: v(4), n
+      logical :: ok, given(4)
+      integer :: k
+      character(len=*), parameter :: what(4) = [character(len=24) :: 'initial time increment', &
+                                                'time period of the step', 'minimum time increment', &
+                                                'maximum time increment']
+      character(len=*), parameter :: help = 'the *STATIC data line is: initial time increment, time period '// &
+                                             'of the step, minimum increment, maximum increment (docs/deck-reference.md)'
+      v = [1.0_wp, 1.0_wp, 0.0_wp, 1.0e30_wp]
+      given = .false.
+      do k = 1, p%f%n
+         if (len_trim(field(p, k)) == 0) cycle
+         call get_real(p, k, trim(what(k)), v(k), ok)
+         if (.not. ok) return
+         given(k) = .true.
+         if (.not. (v(k) > 0.0_wp)) then
+            call err_here(p, 'the '//trim(what(k))//' must be positive, not '//field(p, k), help)
+            return
+         end if
+      end do
+      if (geostatic) return
+      if (given(3) .and. v(3) > v(1)) then
+         call err_here(p, 'the minimum time increment '//field(p, 3)//' is larger than the initial increment '// &
+                       trim(field_or(1, '1')), help)
+         return
+      end if
+      if (given(4) .and. v(4) < min(v(1), v(2))) then
+         call err_here(p, 'the maximum time increment '//field(p, 4)//' is smaller than the initial increment '// &
+                       trim(field_or(1, '1')), help)
+         return
+      end if
+      if (p%cur%direct .and. v(1) < v(2)) then
+         n = v(2)/v(1)
+         if (abs(n - anint(n)) > 1.0e-6_wp*n) call warn_here(p, 'the fixed increment '//trim(field_or(1, '1'))// &
+                                                            ' does not divide the step time '// &
+                                                            trim(field_or(2, '1'))//': the last increment is shorter')
+      end if
+      p%cur%dt_initial = v(1)
+      p%cur%period = v(2)
+      p%cur%dt_min = v(3)
+      p%cur%dt_max = v(4)
+   contains
+      function field_or(k, dflt) result(s)
+         integer, intent(in) :: k
+         character(len=*), intent(in) :: dflt
+         character(len=:), allocatable :: s
+         s = dflt
+         if (given(k)) s = field(p, k)
+      end function field_or
+   end subroutine read_increments
 
    !> SOLVER= of *STATIC: vemcontact's linear solvers CHOLMOD, GAMG, HYPRE, MUMPS set
    !> model%linear_solver (the command line's --solver wins); CalculiX's SPOOLES,
@@ -535,6 +596,8 @@ contains
    end subroutine read_solver
 
    !> *END STEP, or the implicit end of a step: store the step in the model.
+   !> model%steps grows by doubling (its size is the capacity while the deck is read,
+   !> trim_steps makes it exact), so that reading n steps costs O(n).
    subroutine end_step(p, model)
       type(deck_parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: model
@@ -544,24 +607,51 @@ contains
          call err_at(p, p%step_loc, 'the step has no procedure', &
                      'add *STATIC inside the step (or *GEOSTATIC, in the first step only)')
       end if
-      allocate (t(p%nstep + 1))
-      do k = 1, p%nstep
-         call move_step(model%steps(k), t(k))
-      end do
+      if (.not. allocated(model%steps)) allocate (model%steps(4))
+      if (p%nstep == size(model%steps)) then
+         allocate (t(2*p%nstep))
+         do k = 1, p%nstep
+            call move_step(model%steps(k), t(k))
+         end do
+         call move_alloc(t, model%steps)
+      end if
       p%nstep = p%nstep + 1
-      call acc_to_step(p%cur, t(p%nstep))
-      t(p%nstep)%loc = p%step_loc
-      if (p%nstep > 1) call carry_outputs(t(p%nstep - 1), t(p%nstep), p%cur%out_seen)
-      call move_alloc(t, model%steps)
+      call acc_to_step(p%cur, model%steps(p%nstep))
+      model%steps(p%nstep)%loc = p%step_loc
+      if (p%nstep > 1) call carry_outputs(model%steps(p%nstep - 1), model%steps(p%nstep), p%cur%out_seen)
       p%in_step = .false.
       p%cur = step_acc_t()
    end subroutine end_step
+
+   !> model%steps of exactly the steps read (end_step leaves it at its capacity).
+   subroutine trim_steps(p, model)
+      type(deck_parser_t), intent(in) :: p
+      type(model_t), intent(inout) :: model
+      type(step_t), allocatable :: t(:)
+      integer :: k
+      if (.not. allocated(model%steps)) then
+         allocate (model%steps(0))
+         return
+      end if
+      if (size(model%steps) == p%nstep) return
+      allocate (t(p%nstep))
+      do k = 1, p%nstep
+         call move_step(model%steps(k), t(k))
+      end do
+      call move_alloc(t, model%steps)
+   end subroutine trim_steps
 
    subroutine move_step(a, b)
       type(step_t), intent(inout) :: a
       type(step_t), intent(out) :: b
       call move_alloc(a%name, b%name)
       b%procedure = a%procedure
+      b%dt_initial = a%dt_initial
+      b%period = a%period
+      b%dt_min = a%dt_min
+      b%dt_max = a%dt_max
+      b%direct = a%direct
+      b%ramp = a%ramp
       b%boundary_new = a%boundary_new
       b%cload_new = a%cload_new
       b%dload_new = a%dload_new
@@ -578,6 +668,13 @@ contains
       type(step_t), intent(inout) :: s
       if (allocated(acc%name)) s%name = acc%name
       s%procedure = acc%procedure
+      s%dt_initial = acc%dt_initial
+      s%period = acc%period
+      s%dt_min = acc%dt_min
+      s%dt_max = acc%dt_max
+      s%direct = acc%direct
+      ! *GEOSTATIC applies its loads at once (one increment)
+      s%ramp = acc%ramp .and. acc%procedure /= procedure_geostatic
       s%boundary_new = acc%bnew
       s%cload_new = acc%cnew
       s%dload_new = acc%dnew

@@ -38,6 +38,9 @@ module vemcontact_deck_state
       integer :: nb = 0, nc = 0, nd = 0
       logical :: bnew = .false., cnew = .false., dnew = .false.  !< OP=NEW seen
       integer :: procedure = procedure_static
+      !> the *STATIC data line and parameters, *STEP's AMPLITUDE= (model's step_t)
+      real(wp) :: dt_initial = 1.0_wp, period = 1.0_wp, dt_min = 0.0_wp, dt_max = 1.0e30_wp
+      logical :: direct = .false., ramp = .true.
       character(len=:), allocatable :: name
       type(output_request_t), allocatable :: outputs(:)
       integer :: nout = 0

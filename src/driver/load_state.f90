@@ -16,9 +16,13 @@ module vemcontact_driver_load_state
       logical, allocatable :: fixed(:)        !< (ndof) dof has a prescribed displacement
       real(wp), allocatable :: prescribed(:)  !< (ndof) its value
       real(wp), allocatable :: force(:)       !< (ndof) concentrated loads
+      !> (ndof) the *AMPLITUDE of the prescribed value and of the load at each dof
+      !> (index into model%amplitudes, 0: the step's ramp)
+      integer, allocatable :: fixed_amp(:), force_amp(:)
       type(dload_t), allocatable :: dload(:)  !< distributed loads in force
       logical, allocatable :: base_fixed(:)   !< model-definition constraints
       real(wp), allocatable :: base_value(:)
+      integer, allocatable :: base_amp(:)
    end type load_state_t
 
 contains
@@ -32,10 +36,13 @@ contains
       allocate (st%fixed(ndof), source=.false.)
       allocate (st%prescribed(ndof), source=0.0_wp)
       allocate (st%force(ndof), source=0.0_wp)
+      allocate (st%fixed_amp(ndof), st%force_amp(ndof), source=0)
       allocate (st%dload(0))
-      if (allocated(model%initial%boundary)) call set_dofs(model%initial%boundary, st%fixed, st%prescribed)
+      if (allocated(model%initial%boundary)) &
+         call set_dofs(model%initial%boundary, st%fixed, st%prescribed, st%fixed_amp)
       st%base_fixed = st%fixed
       st%base_value = st%prescribed
+      st%base_amp = st%fixed_amp
    end subroutine init_load_state
 
    !> Apply the entries of `step` to the state left by the previous step.
@@ -46,12 +53,16 @@ contains
       if (step%boundary_new) then
          st%fixed = st%base_fixed
          st%prescribed = st%base_value
+         st%fixed_amp = st%base_amp
       end if
-      if (allocated(step%boundary)) call set_dofs(step%boundary, st%fixed, st%prescribed)
-      if (step%cload_new) st%force = 0.0_wp
+      if (allocated(step%boundary)) call set_dofs(step%boundary, st%fixed, st%prescribed, st%fixed_amp)
+      if (step%cload_new) then
+         st%force = 0.0_wp
+         st%force_amp = 0
+      end if
       if (allocated(step%cload)) then
          allocate (dummy(size(st%force)), source=.false.)
-         call set_dofs(step%cload, dummy, st%force)
+         call set_dofs(step%cload, dummy, st%force, st%force_amp)
       end if
       if (step%dload_new) then
          deallocate (st%dload)
@@ -61,15 +72,17 @@ contains
    end subroutine advance_load_state
 
    !> Set the value of each listed dof, the last entry for a dof winning.
-   pure subroutine set_dofs(entries, flag, value)
+   pure subroutine set_dofs(entries, flag, value, amp)
       type(dof_value_t), intent(in) :: entries(:)
       logical, intent(inout) :: flag(:)
       real(wp), intent(inout) :: value(:)
+      integer, intent(inout) :: amp(:)
       integer :: k, d
       do k = 1, size(entries)
          d = 2*entries(k)%node - 2 + entries(k)%dof
          flag(d) = .true.
          value(d) = entries(k)%value
+         amp(d) = entries(k)%amp
       end do
    end subroutine set_dofs
 

@@ -1,19 +1,26 @@
-!> Linear static analysis over the deck's steps, with output after every step.
-!> Every completed step is in the VTU and PVD files before the next starts and
-!> in the HDF5 file, which gets its final name when the run ends: a run that
-!> fails part way keeps the steps it completed (the HDF5 file without the step
-!> that failed and marked `complete = 0`); a killed run leaves no HDF5 file.
+!> Static analysis over the deck's steps, each applied in one or more load
+!> increments (vemcontact_driver_increments), with output after every step.
+!> Every completed step is in the VTU files before the next starts and in the
+!> HDF5 file, which gets its final name when the run ends: a run that fails part
+!> way keeps the steps it completed (the HDF5 file without the step that failed
+!> and marked `complete = 0`, the .pvd listing the steps completed); a killed
+!> run leaves no HDF5 file.
+!>
+!> The run is a sequence of stages on one `run_state_t`: the set-up report
+!> (set_up), the result files (open_files), then per step its increments
+!> (run_step, solve_increment), the post-processing of the converged state
+!> (post_process) and the output (write_results).
 module vemcontact_driver_static
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_error, only: error_t, append_message
+   use vemcontact_error, only: error_t, append_message, fatal_error, err_solver
    use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic, &
-                               element_order, etype_polygon2, &
-                               pair_surface_to_surface
+                               element_order, etype_polygon2, pair_surface_to_surface, amplitude_t
    use vemcontact_sparse_mmio, only: write_matrix_market
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_driver_linear, only: linear_system_t
    use vemcontact_driver_validate, only: element_warnings
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
+   use vemcontact_driver_increments, only: increment_control_t, loads_at
    use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
    use vemcontact_post_stress, only: nodal_average
    use vemcontact_post_estimate, only: error_estimate_t, estimate_error
@@ -21,7 +28,7 @@ module vemcontact_driver_static
    use vemcontact_post_reactions, only: reaction_forces, constrained_sets
    use vemcontact_post_labels, only: element_section_sets, element_parts
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
-   use vemcontact_output_pvd, only: write_pvd
+   use vemcontact_output_pvd, only: pvd_list_t, pvd_rewrite_due
    use vemcontact_output_hdf5, only: h5_writer_t
    use vemcontact_output_contact, only: write_contact_csv, write_contact_vtu
    use vemcontact_output_selection, only: field_selection_t, step_selection
@@ -50,6 +57,42 @@ module vemcontact_driver_static
       logical :: write_files = .true.
    end type run_options_t
 
+   !> The results of a converged state derived from its displacements: what the
+   !> output writes.
+   type :: state_results_t
+      real(wp), allocatable :: u_out(:)       !< displacements relative to the geostatic step
+      real(wp), allocatable :: s_elem(:, :), s_node(:, :)
+      !> second-order elements: stress and strain at each element's nodes
+      real(wp), allocatable :: s_at(:, :), e_at(:, :)
+      real(wp), allocatable :: ku(:), f(:)    !< K u and the applied loads
+      type(vtu_extras_t) :: extra             !< strains, reactions, labels, time
+      type(error_estimate_t) :: est
+      type(string_t), allocatable :: set_names(:)
+      real(wp), allocatable :: set_rf(:, :)   !< reaction totals of the constrained node sets
+      type(contact_table_t) :: tab
+   end type state_results_t
+
+   !> Everything the run carries from stage to stage and from step to step.
+   type :: run_state_t
+      type(linear_system_t) :: sys
+      type(contact_state_t) :: contact
+      type(h5_writer_t) :: h5
+      type(load_state_t) :: given       !< the step's loads as the deck gives them
+      type(load_state_t) :: applied     !< the loads of the increment being solved
+      type(load_state_t) :: prev        !< the loads applied at the end of the previous step
+      real(wp), allocatable :: u(:)     !< displacements of the last converged increment
+      real(wp), allocatable :: u_ref(:) !< displacements at the end of a geostatic step
+      type(state_results_t) :: res
+      type(pvd_list_t) :: pvd           !< the VTU files written, for JOB.pvd
+      character(len=:), allocatable :: base  !< out_dir/job
+      integer :: current = 0            !< the step being run
+      integer :: done = 0               !< the last step whose results are in every file
+      real(wp) :: t_start = 0.0_wp      !< total time at the start of the current step
+      logical :: matrix_written = .false.  !< --write-matrix: JOB.mtx is written
+      integer :: pvd_steps = 0          !< the completed steps JOB.pvd lists
+      integer :: pvd_done = 0           !< the entries of rs%pvd of the completed steps
+   end type run_state_t
+
 contains
 
    !> Run every step.  The model gains the interface nodes of SURFACE TO SURFACE
@@ -61,54 +104,107 @@ contains
       type(run_options_t), intent(in) :: opts
       type(logger_t), intent(inout) :: log
       type(error_t), allocatable, intent(out) :: error
-      type(h5_writer_t) :: h5
+      type(run_state_t) :: rs
       type(error_t), allocatable :: err2
-      integer :: current, done
-      current = 0
-      done = 0
-      call run_steps(model, opts, log, h5, current, done, error)
-      if (.not. allocated(error) .or. .not. h5%is_open()) return
-      if (current > done) call h5%discard_step(current, err2)
+      call run_steps(model, opts, log, rs, error)
+      if (.not. allocated(error)) return
+      ! the .pvd lists every completed step, and only those
+      if (opts%write_files .and. rs%done > rs%pvd_steps) then
+         rs%pvd%n = rs%pvd_done
+         call rs%pvd%write(rs%base//'.pvd', err2)
+         if (allocated(err2)) call append_message(error, '(no .pvd file: '//err2%message//')')
+         if (allocated(err2)) deallocate (err2)
+      end if
+      if (.not. rs%h5%is_open()) return
+      if (rs%current > rs%done) call rs%h5%discard_step(rs%current, err2)
       if (allocated(err2)) then
-         call h5%discard()
+         call rs%h5%discard()
       else
-         call h5%close(err2)
+         call rs%h5%close(err2)
       end if
       if (allocated(err2)) call append_message(error, '(no HDF5 results file: '//err2%message//')')
    end subroutine run_static
 
-   !> The analysis and its output; `current` is the step being run, `done` the
-   !> last step whose results are in every file.
-   subroutine run_steps(model, opts, log, h5, current, done, error)
+   !> The analysis and its output, stage by stage.
+   subroutine run_steps(model, opts, log, rs, error)
       type(model_t), intent(inout) :: model
       type(run_options_t), intent(in) :: opts
       type(logger_t), intent(inout) :: log
-      type(h5_writer_t), intent(inout) :: h5
-      integer, intent(inout) :: current, done
+      type(run_state_t), intent(inout) :: rs
       type(error_t), allocatable, intent(out) :: error
-      type(linear_system_t) :: sys
-      type(sym_csc_t) :: kwhole
-      integer(ip), allocatable :: per_process(:)
-      type(load_state_t) :: st
-      type(contact_state_t) :: contact
-      type(contact_table_t) :: tab
-      type(error_estimate_t) :: est
-      integer, allocatable :: parts(:)
-      integer :: ip_
-      real(wp), allocatable :: u(:), u_ref(:), u_out(:), s_elem(:, :), s_node(:, :), times(:), s_at(:, :)
-      real(wp), allocatable :: e_at(:, :), ku(:), f(:), set_rf(:, :)
-      integer, allocatable :: rf_sets(:)
-      type(string_t), allocatable :: set_names(:)
-      type(vtu_extras_t) :: extra
-      type(field_selection_t) :: sel
-      integer :: ie
-      type(string_t), allocatable :: vtu_files(:), warnings(:)
-      integer :: istep, iw
-      character(len=256) :: buf
-      character(len=:), allocatable :: base, vtu_name, name
-
-      call contact%init(model, error)
+      integer :: istep
+      call set_up(model, opts, log, rs, error)
       if (allocated(error)) return
+      call open_files(model, opts, log, rs, error)
+      if (allocated(error)) return
+      call init_state(model, rs)
+      call log%lap('write mesh')
+      do istep = 1, size(model%steps)
+         call run_step(model, opts, log, rs, istep, error)
+         if (allocated(error)) return
+      end do
+      log%step = 0
+      if (opts%write_files) then
+         call rs%h5%close(error, complete=.true.)
+         if (allocated(error)) return
+      end if
+      call rs%sys%solver%release()
+      call log%say('results')
+      call log%say('  '//rs%base//'.pvd')
+      call log%say('  '//rs%base//'.h5')
+   end subroutine run_steps
+
+   !> Contact pairs, the linear system and its solver, with the set-up report.
+   subroutine set_up(model, opts, log, rs, error)
+      type(model_t), intent(inout) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      type(error_t), allocatable, intent(out) :: error
+      type(string_t), allocatable :: warnings(:)
+      character(len=256) :: buf
+      integer :: iw
+      call rs%contact%init(model, error)
+      if (allocated(error)) return
+      call report_model(model, rs%contact, log)
+      call rs%sys%setup(model, opts%ordering, error, rs%contact, opts%solver)
+      if (allocated(error)) return
+      rs%sys%fallback = opts%solver_fallback
+      ! valid but known to be poor: locking FEM sections, non-convex FEM quads
+      warnings = element_warnings(model)
+      do iw = 1, size(warnings)
+         call log%say(warnings(iw)%s)
+      end do
+      if (any(rs%sys%unused)) then
+         write (buf, '(2x,a,i0,a)') 'note: ', count(rs%sys%unused), ' nodes belong to no element and are left out'
+         call log%say(trim(buf))
+      end if
+      ! the factor's size for a direct solver that reports it (none for CG + AMG)
+      buf = ''
+      if (rs%sys%solver%nnz_factor > 0) write (buf, '(a,i0,a,es9.2)') ', factor nnz ', rs%sys%solver%nnz_factor, &
+         ', flops ', rs%sys%solver%flops
+      call log%say('  solver '//rs%sys%solver%describe()//trim(buf))
+      ! the phases are laps (vemcontact_log): each lap is the time since the
+      ! previous one that the phases logged in between do not account for
+      call log%phase('validate', rs%sys%t_validate)
+      call log%phase('pattern', rs%sys%t_pattern)
+      ! of which the contact search for the candidate pairs of the pattern
+      if (rs%contact%n > 0) call log%phase('candidates', rs%sys%t_candidates, within='pattern')
+      ! of which the partition of the mesh over the processes (distributed)
+      if (rs%sys%dist) call log%phase('partition', rs%sys%t_partition, within='pattern')
+      call log%phase('assemble', rs%sys%t_assemble)
+      call log%phase('analyze', rs%sys%t_analyze)
+      ! contact surfaces and pairs, parts, unused nodes, element warnings
+      call log%lap('set-up')
+   end subroutine set_up
+
+   !> The set-up report of the model: interface nodes, sizes, contact pairs.
+   subroutine report_model(model, contact, log)
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(in) :: contact
+      type(logger_t), intent(inout) :: log
+      character(len=256) :: buf
+      integer :: ip_
       do ip_ = 1, size(contact%inserted)
          if (model%pairs(ip_)%formulation /= pair_surface_to_surface) cycle
          write (buf, '(2x,a,i0,a,i0,a,i0,a)') 'contact pair ', ip_, ' (SURFACE TO SURFACE): ', contact%inserted(ip_), &
@@ -129,328 +225,475 @@ contains
          count(model%elem_type == etype_polygon), ', second-order polygons (VPE2/VPS2) ', &
          count(model%elem_type == etype_polygon2)
       call log%say(trim(buf))
-
-      if (contact%n > 0) then
-         write (buf, '(2x,a,i0,a,i0,a)') 'contact: ', size(contact%pairs), ' pairs, ', contact%n, ' slave nodes'
-         call log%say(trim(buf))
-         do ip_ = 1, size(model%pairs)
-            write (buf, '(4x,a,i0,a,i0,a,i0,a,es10.3,a)') 'pair ', ip_, ': ', contact%pairs(ip_)%nslave, &
-               ' slave nodes on ', size(contact%pairs(ip_)%seg, 2), ' master segments, K = ', &
-               contact%pairs(ip_)%slope, ' (pressure per unit overclosure)'
-            call log%say(trim(buf)//', '//model%surfaces(model%pairs(ip_)%slave)%name//' on '// &
-                         model%surfaces(model%pairs(ip_)%master)%name)
-         end do
-         if (contact%nexcluded > 0) then
-            write (buf, '(2x,a,i0,a)') 'note: ', contact%nexcluded, &
-               ' slave nodes are also master nodes (joint tips, bonded nodes) and are left out of contact'
-            call log%say(trim(buf))
-         end if
-      end if
-      call sys%setup(model, opts%ordering, error, contact, opts%solver)
-      if (allocated(error)) return
-      sys%fallback = opts%solver_fallback
-      ! valid but known to be poor: locking FEM sections, non-convex FEM quads
-      warnings = element_warnings(model)
-      do iw = 1, size(warnings)
-         call log%say(warnings(iw)%s)
+      if (contact%n == 0) return
+      write (buf, '(2x,a,i0,a,i0,a)') 'contact: ', size(contact%pairs), ' pairs, ', contact%n, ' slave nodes'
+      call log%say(trim(buf))
+      do ip_ = 1, size(model%pairs)
+         write (buf, '(4x,a,i0,a,i0,a,i0,a,es10.3,a)') 'pair ', ip_, ': ', contact%pairs(ip_)%nslave, &
+            ' slave nodes on ', size(contact%pairs(ip_)%seg, 2), ' master segments, K = ', &
+            contact%pairs(ip_)%slope, ' (pressure per unit overclosure)'
+         call log%say(trim(buf)//', '//model%surfaces(model%pairs(ip_)%slave)%name//' on '// &
+                      model%surfaces(model%pairs(ip_)%master)%name)
       end do
-      if (any(sys%unused)) then
-         write (buf, '(2x,a,i0,a)') 'note: ', count(sys%unused), ' nodes belong to no element and are left out'
+      if (contact%nexcluded > 0) then
+         write (buf, '(2x,a,i0,a)') 'note: ', contact%nexcluded, &
+            ' slave nodes are also master nodes (joint tips, bonded nodes) and are left out of contact'
          call log%say(trim(buf))
       end if
-      ! the factor's size for a direct solver that reports it (none for CG + AMG)
-      buf = ''
-      if (sys%solver%nnz_factor > 0) write (buf, '(a,i0,a,es9.2)') ', factor nnz ', sys%solver%nnz_factor, &
-         ', flops ', sys%solver%flops
-      call log%say('  solver '//sys%solver%describe()//trim(buf))
-      ! the phases are laps (vemcontact_log): each lap is the time since the
-      ! previous one that the phases logged in between do not account for
-      call log%phase('validate', sys%t_validate)
-      call log%phase('pattern', sys%t_pattern)
-      ! of which the contact search for the candidate pairs of the pattern
-      if (contact%n > 0) call log%phase('candidates', sys%t_candidates, within='pattern')
-      ! of which the partition of the mesh over the processes (distributed)
-      if (sys%dist) call log%phase('partition', sys%t_partition, within='pattern')
-      call log%phase('assemble', sys%t_assemble)
-      call log%phase('analyze', sys%t_analyze)
-      ! contact surfaces and pairs, parts, unused nodes, element warnings
-      call log%lap('set-up')
+   end subroutine report_model
 
-      base = opts%out_dir//'/'//opts%job
+   !> JOB.h5 with the mesh and its labels (the processes' elements for a distributed run).
+   subroutine open_files(model, opts, log, rs, error)
+      type(model_t), intent(in) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      type(error_t), allocatable, intent(out) :: error
+      integer(ip), allocatable :: per_process(:)
+      character(len=:), allocatable :: line
+      character(len=32) :: buf
+      integer :: k
+      rs%base = opts%out_dir//'/'//opts%job
       if (opts%write_files) then
          ! the elements of each process (one process: all of them)
          per_process = [model%nelem]
-         if (sys%dist) per_process = sys%partition%elements
-         call h5%open(base//'.h5', error, solver=sys%solver%describe(), partition=per_process)
+         if (rs%sys%dist) per_process = rs%sys%partition%elements
+         call rs%h5%open(rs%base//'.h5', error, solver=rs%sys%solver%describe(), partition=per_process)
          if (allocated(error)) return
-         call h5%write_mesh(model, error)
+         call rs%h5%write_mesh(model, error)
          if (allocated(error)) then
-            call h5%discard()
+            call rs%h5%discard()
             return
          end if
-         extra%elem_set = element_section_sets(model)
-         extra%elem_part = element_parts(model, sys%part)
-         call h5%write_labels(model, extra%elem_set, extra%elem_part, error)
+         rs%res%extra%elem_set = element_section_sets(model)
+         rs%res%extra%elem_part = element_parts(model, rs%sys%part)
+         call rs%h5%write_labels(model, rs%res%extra%elem_set, rs%res%extra%elem_part, error)
          if (allocated(error)) then
-            call h5%discard()
+            call rs%h5%discard()
             return
          end if
       end if
-      if (sys%dist) then
-         write (buf, '(2x,a,i0,a)') 'distributed over ', sys%partition%nparts, ' processes (METIS partition '// &
-            'of the nodes): elements per process'
-         name = trim(buf)
-         do iw = 1, sys%partition%nparts
-            write (buf, '(i0)') sys%partition%elements(iw)
-            name = name//' '//trim(buf)
+      if (rs%sys%dist) then
+         write (buf, '(2x,a,i0,a)') 'distributed over ', rs%sys%partition%nparts, ' processes'
+         line = trim(buf)//' (METIS partition of the nodes): elements per process'
+         do k = 1, rs%sys%partition%nparts
+            write (buf, '(i0)') rs%sys%partition%elements(k)
+            line = line//' '//trim(buf)
          end do
-         call log%say(name)
+         call log%say(line)
       end if
+   end subroutine open_files
 
-      call init_load_state(model, st)
-      allocate (u(2*model%nnode), s_elem(4, model%nelem), s_node(4, model%nnode))
-      allocate (extra%e_elem(4, model%nelem), extra%e_node(4, model%nnode), extra%rf(2, model%nnode))
-      allocate (ku(2*model%nnode), f(2*model%nnode))
-      if (any([(element_order(model%elem_type(ie)) == 2, ie=1, int(model%nelem))])) &
-         allocate (s_at(4, model%elem_ptr(model%nelem + 1) - 1), e_at(4, model%elem_ptr(model%nelem + 1) - 1))
+   !> The state before the first step: no loads, zero displacements, the result arrays.
+   subroutine init_state(model, rs)
+      type(model_t), intent(inout) :: model
+      type(run_state_t), intent(inout) :: rs
+      integer :: ie
+      integer(ip) :: nat
+      if (.not. allocated(model%amplitudes)) allocate (model%amplitudes(0))
+      call init_load_state(model, rs%given)
+      rs%prev = rs%given
+      rs%prev%fixed = .false.
+      allocate (rs%u(2*model%nnode), source=0.0_wp)
       ! displacements are reported relative to the end of a geostatic step
-      allocate (u_ref(2*model%nnode), source=0.0_wp)
-      allocate (vtu_files(0), times(0), parts(0))
-      u = 0.0_wp
-      call log%lap('write mesh')
-      do istep = 1, size(model%steps)
-         current = istep
-         log%step = istep
-         name = step_name(istep)
-         call log%say('step '//name)
-         call advance_load_state(model%steps(istep), st)
-         call sys%solve_state(model, st, u, error, contact, log)
-         if (allocated(error)) return
-         if (sys%fell_back .and. opts%write_files) then
-            ! the solver that ran, once it is CHOLMOD after a failed CG
-            call h5%set_solver(sys%solver%describe(), error)
-            if (allocated(error)) return
-            sys%fell_back = .false.
+      allocate (rs%u_ref(2*model%nnode), source=0.0_wp)
+      associate (r => rs%res)
+         allocate (r%s_elem(4, model%nelem), r%s_node(4, model%nnode))
+         allocate (r%extra%e_elem(4, model%nelem), r%extra%e_node(4, model%nnode), r%extra%rf(2, model%nnode))
+         allocate (r%ku(2*model%nnode), r%f(2*model%nnode))
+         if (any([(element_order(model%elem_type(ie)) == 2, ie=1, int(model%nelem))])) then
+            nat = model%elem_ptr(model%nelem + 1) - 1
+            allocate (r%s_at(4, nat), r%e_at(4, nat))
          end if
-         if (sys%iterations > 0) then
-            write (buf, '(2x,a,i0,a,i0,a)') 'contact converged in ', sys%iterations, ' iterations (', &
-               sys%factorizations, ' numeric factorizations)'
+      end associate
+   end subroutine init_state
+
+   !> Step `istep`: its increments, then the post-processing and output of its end.
+   subroutine run_step(model, opts, log, rs, istep, error)
+      type(model_t), intent(in) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(out) :: error
+      type(increment_control_t) :: ctl
+      type(contact_state_t) :: contact_saved
+      real(wp), allocatable :: u_start(:), u_saved(:)
+      logical :: ok, several
+      character(len=200) :: buf
+      rs%current = istep
+      log%step = istep
+      call log%say('step '//step_name(model, istep))
+      call advance_load_state(model%steps(istep), rs%given)
+      call ctl%start(model%steps(istep))
+      ! one increment (the default): the log as without increments
+      several = ctl%dt < ctl%period
+      u_start = rs%u
+      do while (.not. ctl%finished())
+         call ctl%next()
+         if (several) then
+            write (buf, '(2x,a,i0,a,es12.5,a,es12.5,a)') 'increment ', ctl%increment + 1, ': step time ', &
+               ctl%t_try, ' (increment ', ctl%t_try - ctl%t, ')'
             call log%say(trim(buf))
          end if
-         if (sys%refactorized) call log%phase('factorize', sys%t_factorize)
-         call log%phase('solve', sys%t_solve)
-         ! pairing and active set of every iteration of the step (also in the iteration lines)
-         if (contact%n > 0) call log%phase('search', sys%t_search)
-         ! the rest of solve_state: load vector, constraints, the contact iteration's own work
-         call log%lap('system')
-         if (opts%write_matrix .and. istep == 1) then
-            if (sys%dist) then
-               ! the whole matrix: the sum of the processes' shares, on every process
-               kwhole = sys%kb
-               call sys%solver%sum_over_ranks(kwhole%val, error)
-               if (allocated(error)) return
-               if (opts%write_files) call write_matrix_market(base//'.mtx', kwhole, error)
-               deallocate (kwhole%val)
-            else if (opts%write_files) then
-               call write_matrix_market(base//'.mtx', sys%kb, error)
+         ! a failed increment starts again from the last converged displacements and
+         ! contact state (the whole state: every history it carries)
+         if (.not. ctl%direct) then
+            u_saved = rs%u
+            if (rs%contact%n > 0) contact_saved = rs%contact
+         end if
+         rs%applied = loads_at(model%steps(istep), rs%given, rs%prev, u_start, ctl%fraction(), rs%t_start, &
+                               model%amplitudes)
+         call solve_increment(model, opts, log, rs, istep, error)
+         if (allocated(error)) then
+            ! only a contact iteration that does not converge is worth a smaller increment
+            if (error%code /= err_solver .or. rs%contact%n == 0) return
+            call ctl%cut_back(ok)
+            if (.not. ok) then
+               call increment_failure(model, ctl, istep, error)
+               return
             end if
-            if (allocated(error)) return
-            call log%lap('write matrix')
-         end if
-
-         if (model%steps(istep)%procedure == procedure_geostatic) then
-            u_ref = u
-            call log%say('  geostatic step: its displacements are the reference (reported as zero), '// &
-                         'its stresses are kept')
-         end if
-         u_out = u - u_ref
-         ! K u for the reactions: every process together (distributed, the shares are added)
-         call sys%elastic_times(u, ku)
-         if (.not. opts%write_files) then
-            ! the post-processing and the output are rank 0's
-            done = istep
+            write (buf, '(2x,a,es12.5,a)') 'increment not converged: cut back to ', ctl%dt, &
+               ' (from the last converged state)'
+            call log%say(trim(buf)//'; '//first_line(error%message))
+            deallocate (error)
+            rs%u = u_saved
+            if (rs%contact%n > 0) rs%contact = contact_saved
+            several = .true.
             cycle
          end if
+         call ctl%accept(rs%sys%iterations)
+      end do
+      rs%prev = rs%applied
+      rs%t_start = rs%t_start + model%steps(istep)%period
+      if (model%steps(istep)%procedure == procedure_geostatic) then
+         rs%u_ref = rs%u
+         call log%say('  geostatic step: its displacements are the reference (reported as zero), '// &
+                      'its stresses are kept')
+      end if
+      rs%res%u_out = rs%u - rs%u_ref
+      ! K u for the reactions: every process together (distributed, the shares are added)
+      call rs%sys%elastic_times(rs%u, rs%res%ku)
+      if (.not. opts%write_files) then
+         ! the post-processing and the output are rank 0's
+         rs%done = istep
+         return
+      end if
+      call post_process(model, log, rs)
+      rs%res%extra%time = rs%t_start
+      call write_results(model, opts, log, rs, istep, error)
+      if (allocated(error)) return
+      rs%done = istep
+      rs%pvd_done = rs%pvd%n
+      if (pvd_rewrite_due(istep) .or. istep == size(model%steps)) then
+         call rs%pvd%write(rs%base//'.pvd', error)
+         if (allocated(error)) return
+         rs%pvd_steps = istep
+      end if
+      call log%lap('write')
+      write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(rs%res%u_out(1::2))), &
+         ', max |u_y| ', maxval(abs(rs%res%u_out(2::2))), ', rcond ', rs%sys%solver%rcond()
+      call log%say(trim(buf))
+      call log%failed(error)
+   end subroutine run_step
 
+   !> The error of a step whose increment reached the minimum without converging:
+   !> the step, the time reached, the last contact message.
+   subroutine increment_failure(model, ctl, istep, error)
+      type(model_t), intent(in) :: model
+      type(increment_control_t), intent(in) :: ctl
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(inout) :: error
+      character(len=300) :: buf
+      character(len=:), allocatable :: why
+      why = first_line(error%message)
+      deallocate (error)
+      if (ctl%direct) then
+         write (buf, '(a,es12.5,a,es12.5,a)') ' did not converge at step time ', ctl%t, ' of ', ctl%period, &
+            ' with fixed increments (DIRECT): '
+      else
+         write (buf, '(a,es12.5,a,es12.5,a,es10.3,a)') ' did not converge at step time ', ctl%t, ' of ', &
+            ctl%period, ': the increment reached its minimum ', ctl%dt_min, ': '
+      end if
+      call fatal_error(error, 'error: step '//step_name(model, istep)//trim(buf)//why//new_line('a')// &
+                       '  = help: a smaller initial or minimum increment on the *STATIC data line, '// &
+                       'or more contact iterations (*CONTACT CONTROLS, MAXIT)', err_solver)
+   end subroutine increment_failure
+
+   !> The first line of a message without its "error: " prefix.
+   pure function first_line(msg) result(s)
+      character(len=*), intent(in) :: msg
+      character(len=:), allocatable :: s
+      integer :: j, k
+      k = index(msg, new_line('a'))
+      if (k == 0) k = len(msg) + 1
+      j = 1
+      if (index(msg, 'error: ') == 1) j = 8
+      s = msg(j:k - 1)
+   end function first_line
+
+   !> Solve one increment with the loads rs%applied, from rs%u; its log lines and phases.
+   subroutine solve_increment(model, opts, log, rs, istep, error)
+      type(model_t), intent(in) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(out) :: error
+      type(sym_csc_t) :: kwhole
+      character(len=120) :: buf
+      call rs%sys%solve_state(model, rs%applied, rs%u, error, rs%contact, log)
+      if (allocated(error)) return
+      if (rs%sys%fell_back .and. opts%write_files) then
+         ! the solver that ran, once it is CHOLMOD after a failed CG
+         call rs%h5%set_solver(rs%sys%solver%describe(), error)
+         if (allocated(error)) return
+         rs%sys%fell_back = .false.
+      end if
+      if (rs%sys%iterations > 0) then
+         write (buf, '(2x,a,i0,a,i0,a)') 'contact converged in ', rs%sys%iterations, ' iterations (', &
+            rs%sys%factorizations, ' numeric factorizations)'
+         call log%say(trim(buf))
+      end if
+      if (rs%sys%refactorized) call log%phase('factorize', rs%sys%t_factorize)
+      call log%phase('solve', rs%sys%t_solve)
+      ! pairing and active set of every iteration of the step (also in the iteration lines)
+      if (rs%contact%n > 0) call log%phase('search', rs%sys%t_search)
+      ! the rest of solve_state: load vector, constraints, the contact iteration's own work
+      call log%lap('system')
+      if (.not. opts%write_matrix .or. istep /= 1 .or. rs%matrix_written) return
+      ! the matrix of the first increment of the first step
+      if (rs%sys%dist) then
+         ! the whole matrix: the sum of the processes' shares, on every process
+         kwhole = rs%sys%kb
+         call rs%sys%solver%sum_over_ranks(kwhole%val, error)
+         if (allocated(error)) return
+         if (opts%write_files) call write_matrix_market(rs%base//'.mtx', kwhole, error)
+         deallocate (kwhole%val)
+      else if (opts%write_files) then
+         call write_matrix_market(rs%base//'.mtx', rs%sys%kb, error)
+      end if
+      if (allocated(error)) return
+      rs%matrix_written = .true.
+      call log%lap('write matrix')
+   end subroutine solve_increment
+
+   !> Stresses, strains, the error estimate and the reactions of the converged state.
+   subroutine post_process(model, log, rs)
+      type(model_t), intent(in) :: model
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      integer, allocatable :: rf_sets(:)
+      real(wp), allocatable :: fc(:)
+      integer :: k
+      associate (r => rs%res, st => rs%applied)
          ! second-order elements give their own stress and strain at each node
          ! (linear for the k = 2 VEM), averaged at the nodes instead of the
          ! element values; strains E = D^-1 S from the same recovery
          ! (element_strains)
-         if (allocated(s_at)) then
-            call element_stresses(model, u, s_elem, st%dload, s_at)
-            call nodal_average(model, s_elem, s_node, s_at)
-            call element_strains(model, s_elem, extra%e_elem, s_at, e_at)
-            call nodal_average(model, extra%e_elem, extra%e_node, e_at)
+         if (allocated(r%s_at)) then
+            call element_stresses(model, rs%u, r%s_elem, st%dload, r%s_at)
+            call nodal_average(model, r%s_elem, r%s_node, r%s_at)
+            call element_strains(model, r%s_elem, r%extra%e_elem, r%s_at, r%e_at)
+            call nodal_average(model, r%extra%e_elem, r%extra%e_node, r%e_at)
          else
-            call element_stresses(model, u, s_elem, st%dload)
-            call nodal_average(model, s_elem, s_node)
-            call element_strains(model, s_elem, extra%e_elem)
-            call nodal_average(model, extra%e_elem, extra%e_node)
+            call element_stresses(model, rs%u, r%s_elem, st%dload)
+            call nodal_average(model, r%s_elem, r%s_node)
+            call element_strains(model, r%s_elem, r%extra%e_elem)
+            call nodal_average(model, r%extra%e_elem, r%extra%e_node)
          end if
          call log%lap('stresses')
          ! the recovery-based error estimate: second-order models recover a quadratic
          ! stress from the cells' own linear stresses (s_at)
-         if (.not. allocated(s_at)) then
-            call estimate_error(model, s_elem, est)
+         if (.not. allocated(r%s_at)) then
+            call estimate_error(model, r%s_elem, r%est)
          else
-            call estimate_error2(model, s_at, est)
+            call estimate_error2(model, r%s_at, r%est)
          end if
          call log%lap('estimate')
-         call say_estimate(est)
-         ! reactions: K u - f_ext at the constrained dofs, with the loads in force
-         call assemble_loads(model, st%force, st%dload, f)
-         call reaction_forces(ku, f, st%fixed, extra%rf)
+         call say_estimate(log, r%est)
+         ! reactions: the force the supports exert, K u - f_ext - f_contact at the
+         ! constrained dofs with the loads in force (a constrained slave or master node
+         ! also takes its contact force: the support carries the rest); contact%forces
+         ! adds -f_contact, the contact springs' pull -N A^T n
+         ! (docs/output-format.md, "Reaction forces")
+         call assemble_loads(model, st%force, st%dload, r%f)
+         if (rs%contact%n > 0) then
+            allocate (fc(size(r%f)), source=0.0_wp)
+            call rs%contact%forces(fc)
+            call reaction_forces(r%ku, r%f - fc, st%fixed, r%extra%rf)
+         else
+            call reaction_forces(r%ku, r%f, st%fixed, r%extra%rf)
+         end if
          rf_sets = constrained_sets(model, st%fixed)
-         allocate (set_rf(2, size(rf_sets)), set_names(size(rf_sets)))
-         do iw = 1, size(rf_sets)
-            set_names(iw)%s = model%nsets(rf_sets(iw))%name
-            set_rf(:, iw) = sum(extra%rf(:, model%nsets(rf_sets(iw))%items), dim=2)
+         if (allocated(r%set_rf)) deallocate (r%set_rf, r%set_names)
+         allocate (r%set_rf(2, size(rf_sets)), r%set_names(size(rf_sets)))
+         do k = 1, size(rf_sets)
+            r%set_names(k)%s = model%nsets(rf_sets(k))%name
+            r%set_rf(:, k) = sum(r%extra%rf(:, model%nsets(rf_sets(k))%items), dim=2)
          end do
-         call log_reactions(extra%rf, f, set_names, set_rf)
-         extra%time = real(istep, wp)
+         call log_reactions(log, r%extra%rf, r%f, r%set_names, r%set_rf)
+      end associate
+   end subroutine post_process
+
+   !> The results of step `istep` in every file: VTU, HDF5, contact VTU and CSV, PRINT CSV.
+   subroutine write_results(model, opts, log, rs, istep, error)
+      type(model_t), intent(in) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(out) :: error
+      type(field_selection_t) :: sel
+      character(len=64) :: buf
+      character(len=:), allocatable :: vtu_name
+      real(wp) :: time
+      integer :: nn
+      nn = int(model%nnode)
+      time = rs%res%extra%time
+      associate (r => rs%res)
          ! the fields the deck's output requests select (all without requests)
          sel = step_selection(model, istep)
          write (buf, '(a,i4.4,a)') '_', istep, '.vtu'
-         vtu_name = opts%job//trim(buf)
-         call write_vtu(opts%out_dir//'/'//vtu_name, model, reshape(u_out, [2, int(model%nnode)]), &
-                        s_elem, s_node, error, opts%compress_vtu, extra, sel, indicator=est%indicator)
+         vtu_name = opts%out_dir//'/'//opts%job//trim(buf)
+         call write_vtu(vtu_name, model, reshape(r%u_out, [2, nn]), r%s_elem, r%s_node, error, &
+                        opts%compress_vtu, r%extra, sel, indicator=r%est%indicator)
          if (allocated(error)) return
-         vtu_files = [vtu_files, string_t(opts%out_dir//'/'//vtu_name)]
-         times = [times, real(istep, wp)]
-         parts = [parts, 0]
-         call h5%write_step(istep, name, real(istep, wp), reshape(u_out, [2, int(model%nnode)]), &
-                            s_elem, s_node, error, sel, indicator=est%indicator, &
-                            estimate=est%estimate, energy=est%energy)
+         call rs%pvd%add(vtu_name, time, 0)
+         call rs%h5%write_step(istep, step_name(model, istep), time, reshape(r%u_out, [2, nn]), &
+                               r%s_elem, r%s_node, error, sel, indicator=r%est%indicator, &
+                               estimate=r%est%estimate, energy=r%est%energy)
          if (allocated(error)) return
-         call h5%write_results(istep, extra%e_elem, extra%e_node, extra%rf, set_names, set_rf, error, sel)
+         call rs%h5%write_results(istep, r%extra%e_elem, r%extra%e_node, r%extra%rf, r%set_names, r%set_rf, &
+                                  error, sel, load_total=[sum(r%f(1::2)), sum(r%f(2::2))])
          if (allocated(error)) return
-         deallocate (set_rf, set_names)
-         if (contact%n > 0) then
-            ! contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group per
-            ! pair, when a contact field is selected
-            tab = contact%table(model, u_out)
-            if (sel%contact()) then
-               write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
-               call write_contact_vtu(opts%out_dir//'/'//opts%job//trim(buf), tab, &
-                                      reshape(u_out, [2, int(model%nnode)]), error, opts%compress_vtu, sel)
-               if (allocated(error)) return
-               vtu_files = [vtu_files, string_t(opts%out_dir//'/'//opts%job//trim(buf))]
-               times = [times, real(istep, wp)]
-               parts = [parts, 1]
+         if (rs%contact%n > 0) then
+            call write_contact_results(model, opts, log, rs, istep, sel, error)
+            if (allocated(error)) return
+         end if
+         if (has_print_requests(model, istep)) then
+            ! *NODE PRINT, *EL PRINT, *CONTACT PRINT: CalculiX's JOB.dat as a CSV table
+            write (buf, '(a,i4.4,a)') '_print_', istep, '.csv'
+            if (rs%contact%n > 0) then
+               call write_print_csv(rs%base//trim(buf), model, istep, reshape(r%u_out, [2, nn]), r%extra%rf, &
+                                    r%s_elem, r%extra%e_elem, error, r%tab)
+            else
+               call write_print_csv(rs%base//trim(buf), model, istep, reshape(r%u_out, [2, nn]), r%extra%rf, &
+                                    r%s_elem, r%extra%e_elem, error)
             end if
-            do ip_ = 1, size(model%pairs)
-               if (.not. sel%contact()) exit
-               write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
-               call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error, sel)
-               if (allocated(error)) return
-               call h5%write_contact(istep, ip_, pack(tab%node_id, tab%pair == ip_), &
+            if (allocated(error)) return
+         end if
+      end associate
+   end subroutine write_results
+
+   !> Contact results: a point set beside the mesh (part 1), a CSV and an HDF5 group
+   !> per pair when a contact field is selected; the iteration records; the log's summary.
+   subroutine write_contact_results(model, opts, log, rs, istep, sel, error)
+      type(model_t), intent(in) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(field_selection_t), intent(in) :: sel
+      type(error_t), allocatable, intent(out) :: error
+      character(len=160) :: buf
+      character(len=:), allocatable :: name
+      integer :: ip_
+      associate (tab => rs%res%tab, u_out => rs%res%u_out)
+         tab = rs%contact%table(model, u_out)
+         if (sel%contact()) then
+            write (buf, '(a,i4.4,a)') '_contact_', istep, '.vtu'
+            name = opts%out_dir//'/'//opts%job//trim(buf)
+            call write_contact_vtu(name, tab, reshape(u_out, [2, int(model%nnode)]), error, opts%compress_vtu, sel)
+            if (allocated(error)) return
+            call rs%pvd%add(name, rs%res%extra%time, 1)
+         end if
+         do ip_ = 1, size(model%pairs)
+            if (.not. sel%contact()) exit
+            write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
+            call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error, sel)
+            if (allocated(error)) return
+            call rs%h5%write_contact(istep, ip_, pack(tab%node_id, tab%pair == ip_), &
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
                                      pack(tab%status, tab%pair == ip_), error, sel, &
                                      cshear=pack(tab%cshear, tab%pair == ip_))
-               if (allocated(error)) return
-            end do
-            call h5%write_iterations(istep, sys%records, error)
             if (allocated(error)) return
-            write (buf, '(2x,a,i0,a,i0,a,es12.4,a,es12.4)') 'contact: ', count(contact%active), ' of ', contact%n, &
-               ' slave nodes closed, max pressure ', contact%max_pressure(), ', max penetration ', &
-               contact%max_penetration()
-            call log%say(trim(buf))
-            if (contact%fric%on) then
-               write (buf, '(2x,a,i0,a,i0,a)') 'friction: ', contact%count_state(tangent_stick), ' stick, ', &
-                  contact%count_state(tangent_slip), ' slip'
-               call log%say(trim(buf))
-            end if
-         end if
-         if (has_print_requests(model, istep)) then
-            ! *NODE PRINT, *EL PRINT, *CONTACT PRINT: CalculiX's JOB.dat as a CSV table
-            write (buf, '(a,i4.4,a)') '_print_', istep, '.csv'
-            if (contact%n > 0) then
-               call write_print_csv(base//trim(buf), model, istep, reshape(u_out, [2, int(model%nnode)]), extra%rf, &
-                                    s_elem, extra%e_elem, error, tab)
-            else
-               call write_print_csv(base//trim(buf), model, istep, reshape(u_out, [2, int(model%nnode)]), extra%rf, &
-                                    s_elem, extra%e_elem, error)
-            end if
-            if (allocated(error)) return
-         end if
-         call write_pvd(base//'.pvd', vtu_files, times, error, parts)
-         if (allocated(error)) return
-         done = istep
-         call log%lap('write')
-         write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(u_out(1::2))), &
-            ', max |u_y| ', maxval(abs(u_out(2::2))), ', rcond ', sys%solver%rcond()
-         call log%say(trim(buf))
-         call log%failed(error)
-         if (allocated(error)) return
-      end do
-      log%step = 0
-      if (opts%write_files) then
-         call h5%close(error, complete=.true.)
-         if (allocated(error)) return
-      end if
-      call sys%solver%release()
-      call log%say('results')
-      call log%say('  '//base//'.pvd')
-      call log%say('  '//base//'.h5')
-   contains
-      !> "estimated relative energy error 2.3 %; 50 % of it in 4.1 % of the cells, around (x, y)"
-      subroutine say_estimate(e)
-         type(error_estimate_t), intent(in) :: e
-         if (.not. (e%estimate > 0.0_wp)) then
-            call log%say('  estimated relative energy error 0 %')
-            return
-         end if
-         call log%say('  estimated relative energy error '//number(100.0_wp*e%relative, 3)//' %; 50 % of it in '// &
-                      number(100.0_wp*e%half_fraction, 2)//' % of the cells, around ('//number(e%largest_at(1), 5)//', '// &
-                      number(e%largest_at(2), 5)//')')
-      end subroutine say_estimate
-
-      !> A value with `digits` significant digits, fixed-point from 1e-3 to 1e5, else exponential.
-      function number(v, digits) result(s)
-         real(wp), intent(in) :: v
-         integer, intent(in) :: digits
-         character(len=:), allocatable :: s
-         character(len=32) :: b
-         character(len=16) :: f
-         if (abs(v) >= 1.0e-3_wp .and. abs(v) < 1.0e5_wp) then
-            write (f, '(a,i0,a)') '(f24.', max(0, digits - 1 - floor(log10(abs(v)))), ')'
-         else if (abs(v) > 0.0_wp) then
-            write (f, '(a,i0,a)') '(es24.', digits - 1, ')'
-         else
-            f = '(f3.1)'
-         end if
-         write (b, f) v
-         s = trim(adjustl(b))
-      end function number
-
-      !> Totals of the reaction forces (all nodes, and per constrained node set)
-      !> beside the applied loads they balance.
-      subroutine log_reactions(rf, fext, names, totals)
-         real(wp), intent(in) :: rf(:, :), fext(:), totals(:, :)
-         type(string_t), intent(in) :: names(:)
-         character(len=160) :: line
-         integer :: k
-         write (line, '(2x,a,2es14.6,a,2es14.6)') 'reaction forces RF1, RF2: all nodes', sum(rf, dim=2), &
-            '; applied loads', sum(fext(1::2)), sum(fext(2::2))
-         call log%say(trim(line))
-         do k = 1, size(names)
-            write (line, '(4x,a,2es14.6)') 'node set '//names(k)%s//':', totals(:, k)
-            call log%say(trim(line))
          end do
-      end subroutine log_reactions
+      end associate
+      call rs%h5%write_iterations(istep, rs%sys%records, error)
+      if (allocated(error)) return
+      write (buf, '(2x,a,i0,a,i0,a,es12.4,a,es12.4)') 'contact: ', count(rs%contact%active), ' of ', rs%contact%n, &
+         ' slave nodes closed, max pressure ', rs%contact%max_pressure(), ', max penetration ', &
+         rs%contact%max_penetration()
+      call log%say(trim(buf))
+      if (rs%contact%fric%on) then
+         write (buf, '(2x,a,i0,a,i0,a)') 'friction: ', rs%contact%count_state(tangent_stick), ' stick, ', &
+            rs%contact%count_state(tangent_slip), ' slip'
+         call log%say(trim(buf))
+      end if
+   end subroutine write_contact_results
 
-      function step_name(i) result(s)
-         integer, intent(in) :: i
-         character(len=:), allocatable :: s
-         character(len=16) :: b
-         if (allocated(model%steps(i)%name)) then
-            s = model%steps(i)%name
-         else
-            write (b, '(a,i0)') 'Step-', i
-            s = trim(b)
-         end if
-      end function step_name
-   end subroutine run_steps
+   !> "estimated relative energy error 2.3 %; 50 % of it in 4.1 % of the cells, around (x, y)"
+   subroutine say_estimate(log, e)
+      type(logger_t), intent(inout) :: log
+      type(error_estimate_t), intent(in) :: e
+      if (.not. (e%estimate > 0.0_wp)) then
+         call log%say('  estimated relative energy error 0 %')
+         return
+      end if
+      call log%say('  estimated relative energy error '//number(100.0_wp*e%relative, 3)//' %; 50 % of it in '// &
+                   number(100.0_wp*e%half_fraction, 2)//' % of the cells, around ('//number(e%largest_at(1), 5)//', '// &
+                   number(e%largest_at(2), 5)//')')
+   end subroutine say_estimate
+
+   !> A value with `digits` significant digits, fixed-point from 1e-3 to 1e5, else exponential.
+   function number(v, digits) result(s)
+      real(wp), intent(in) :: v
+      integer, intent(in) :: digits
+      character(len=:), allocatable :: s
+      character(len=32) :: b
+      character(len=16) :: f
+      if (abs(v) >= 1.0e-3_wp .and. abs(v) < 1.0e5_wp) then
+         write (f, '(a,i0,a)') '(f24.', max(0, digits - 1 - floor(log10(abs(v)))), ')'
+      else if (abs(v) > 0.0_wp) then
+         write (f, '(a,i0,a)') '(es24.', digits - 1, ')'
+      else
+         f = '(f3.1)'
+      end if
+      write (b, f) v
+      s = trim(adjustl(b))
+   end function number
+
+   !> Totals of the reaction forces (all nodes, and per constrained node set)
+   !> beside the applied loads they balance.
+   subroutine log_reactions(log, rf, fext, names, totals)
+      type(logger_t), intent(inout) :: log
+      real(wp), intent(in) :: rf(:, :), fext(:), totals(:, :)
+      type(string_t), intent(in) :: names(:)
+      character(len=160) :: line
+      integer :: k
+      write (line, '(2x,a,2es14.6,a,2es14.6)') 'reaction forces RF1, RF2: all nodes', sum(rf, dim=2), &
+         '; applied loads', sum(fext(1::2)), sum(fext(2::2))
+      call log%say(trim(line))
+      do k = 1, size(names)
+         write (line, '(4x,a,2es14.6)') 'node set '//names(k)%s//':', totals(:, k)
+         call log%say(trim(line))
+      end do
+   end subroutine log_reactions
+
+   !> The step's NAME=, else Step-i.
+   function step_name(model, i) result(s)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: b
+      if (allocated(model%steps(i)%name)) then
+         s = model%steps(i)%name
+      else
+         write (b, '(a,i0)') 'Step-', i
+         s = trim(b)
+      end if
+   end function step_name
 end module vemcontact_driver_static

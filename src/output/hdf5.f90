@@ -414,15 +414,17 @@ contains
 
    !> Add to /steps/NNNN (after write_step): strains E_element (4, nelem) and
    !> E_node (4, nnode), reaction forces RF (2, nnode), RF_total (2) over all
-   !> nodes, and RF_sets/names, RF_sets/RF (2, nsets): the totals over the
+   !> nodes, LOAD_total (2) the applied loads it balances, and RF_sets/names, RF_sets/RF (2, nsets): the totals over the
    !> constrained node sets (with `sel`: E and RF as selected); then flush.
-   subroutine h5_write_results(self, istep, e_elem, e_node, rf, set_names, set_rf, error, sel)
+   subroutine h5_write_results(self, istep, e_elem, e_node, rf, set_names, set_rf, error, sel, load_total)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep
       real(wp), intent(in) :: e_elem(:, :), e_node(:, :), rf(:, :), set_rf(:, :)
       type(string_t), intent(in) :: set_names(:)
       type(error_t), allocatable, intent(out) :: error
       type(field_selection_t), intent(in), optional :: sel
+      !> the sum of the applied loads (written as LOAD_total with RF_total, which balances it)
+      real(wp), intent(in), optional :: load_total(2)
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       integer(hid_t) :: grp, sub
@@ -446,6 +448,8 @@ contains
       if (.not. allocated(error) .and. w%rf) call put_real(self, grp, 'RF', shape(rf, hsize_t), rf, error)
       if (.not. allocated(error) .and. w%rf) &
          call put_real(self, grp, 'RF_total', [2_hsize_t], sum(rf, dim=2), error)
+      if (.not. allocated(error) .and. w%rf .and. present(load_total)) &
+         call put_real(self, grp, 'LOAD_total', [2_hsize_t], load_total, error)
       if (.not. allocated(error) .and. w%rf) then
          call h5gcreate_f(grp, 'RF_sets', sub, hdferr)
          if (.not. failed(self, hdferr, 'creating group '//gname//'/RF_sets', error)) then

@@ -1,7 +1,8 @@
 !> ParaView collection (.pvd) of the .vtu files of the steps written so far.
-!> The driver rewrites it after every step, through `safe_file_t` (a unique
-!> temporary, checked writes, fsync, atomic rename), so a run that stops part way leaves a valid collection of the
-!> completed steps.  File names are stored relative to the .pvd's folder so that
+!> The driver rewrites it as the steps complete (pvd_rewrite_due), at the end of the
+!> run and when it stops with an error, through `safe_file_t` (a unique temporary,
+!> checked writes, fsync, atomic rename), so a run that stops part way leaves a valid
+!> collection of completed steps.  File names are stored relative to the .pvd's folder so that
 !> the result folder can be moved or copied as a whole.
 module vemcontact_output_pvd
    use vemcontact_kinds, only: wp
@@ -13,9 +14,70 @@ module vemcontact_output_pvd
    implicit none
    private
 
-   public :: write_pvd, relative_path
+   public :: write_pvd, relative_path, pvd_list_t, pvd_rewrite_due
+
+   !> The entries of a collection as the run adds them (amortised O(1) per entry).
+   type :: pvd_list_t
+      type(string_t), allocatable :: files(:)
+      real(wp), allocatable :: times(:)
+      integer, allocatable :: parts(:)
+      integer :: n = 0
+   contains
+      procedure :: add => pvd_add
+      procedure :: write => pvd_list_write
+   end type pvd_list_t
 
 contains
+
+   !> Whether the driver rewrites the .pvd after its `n`-th completed step: when n is
+   !> a power of two (1, 2, 4, ...).  Each rewrite costs O(n), so a run of N steps
+   !> writes fewer than 2N entries in all (linear, where a rewrite after every step
+   !> costs N^2/2); the driver also writes it when the run ends or stops with an
+   !> error, so only a killed run leaves a .pvd that lists fewer steps (at least half
+   !> of the completed ones) than the .vtu files on disk.
+   pure logical function pvd_rewrite_due(n)
+      integer, intent(in) :: n
+      pvd_rewrite_due = n > 0 .and. iand(n, n - 1) == 0
+   end function pvd_rewrite_due
+
+   !> Append a file with its time and ParaView part.
+   subroutine pvd_add(self, file, time, part)
+      class(pvd_list_t), intent(inout) :: self
+      character(len=*), intent(in) :: file
+      real(wp), intent(in) :: time
+      integer, intent(in) :: part
+      type(string_t), allocatable :: f(:)
+      real(wp), allocatable :: t(:)
+      integer, allocatable :: p(:)
+      integer :: cap
+      if (.not. allocated(self%files)) allocate (self%files(16), self%times(16), self%parts(16))
+      if (self%n == size(self%files)) then
+         cap = 2*size(self%files)
+         allocate (f(cap), t(cap), p(cap))
+         f(:self%n) = self%files(:self%n)
+         t(:self%n) = self%times(:self%n)
+         p(:self%n) = self%parts(:self%n)
+         call move_alloc(f, self%files)
+         call move_alloc(t, self%times)
+         call move_alloc(p, self%parts)
+      end if
+      self%n = self%n + 1
+      self%files(self%n)%s = file
+      self%times(self%n) = time
+      self%parts(self%n) = part
+   end subroutine pvd_add
+
+   !> Write the collection of the entries added so far to `path` (write_pvd).
+   subroutine pvd_list_write(self, path, error)
+      class(pvd_list_t), intent(in) :: self
+      character(len=*), intent(in) :: path
+      type(error_t), allocatable, intent(out) :: error
+      if (.not. allocated(self%files)) then
+         call write_pvd(path, [string_t ::], [real(wp) ::], error, [integer ::])
+      else
+         call write_pvd(path, self%files(:self%n), self%times(:self%n), error, self%parts(:self%n))
+      end if
+   end subroutine pvd_list_write
 
    !> Write the collection `path` with one DataSet per entry of `files` at `times`.
    !> `files` are paths as the program uses them (absolute, or relative to the
@@ -29,7 +91,7 @@ contains
       !> ParaView part of each file (default 0): the mesh is part 0, contact points part 1
       integer, intent(in), optional :: parts(:)
       character(len=12) :: pbuf
-      character(len=:), allocatable :: dir, rel, text
+      character(len=:), allocatable :: dir, rel
       character(len=32) :: tbuf
       character(len=1), parameter :: nl = new_line('a')
       type(safe_file_t) :: out
@@ -42,28 +104,28 @@ contains
          return
       end if
       dir = dirname(path)
-      text = '<?xml version="1.0"?>'//nl &
-             //'<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">'//nl &
-             //'<Collection>'//nl
+      call out%open(path, error)
+      if (allocated(error)) return
+      call out%write('<?xml version="1.0"?>'//nl &
+                     //'<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">'//nl &
+                     //'<Collection>'//nl)
+      ! one write per entry: the cost is linear in the number of entries
       do k = 1, size(files)
          call relative_path(files(k)%s, dir, rel, ok)
          if (.not. ok) then
             call fatal_error(error, 'write_pvd: cannot express '''//files(k)%s &
                              //''' relative to the folder of '''//path//'''', err_internal)
+            call out%discard()
             return
          end if
          ! 17 significant digits: the time reads back as the same double
          write (tbuf, '(es24.16e3)') times(k)
          pbuf = '0'
          if (present(parts)) write (pbuf, '(i0)') parts(k)
-         text = text//'<DataSet timestep="'//trim(adjustl(tbuf))//'" group="" part="'//trim(pbuf)//'" file="' &
-                //xml_escape(rel)//'"/>'//nl
+         call out%write('<DataSet timestep="'//trim(adjustl(tbuf))//'" group="" part="'//trim(pbuf)//'" file="' &
+                        //xml_escape(rel)//'"/>'//nl)
       end do
-      text = text//'</Collection>'//nl//'</VTKFile>'//nl
-
-      call out%open(path, error)
-      if (allocated(error)) return
-      call out%write(text)
+      call out%write('</Collection>'//nl//'</VTKFile>'//nl)
       call out%commit(error)
    end subroutine write_pvd
 

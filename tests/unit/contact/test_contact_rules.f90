@@ -1,14 +1,15 @@
 !> Each rule of the contact iteration alone (vemcontact_contact_rules): the line
 !> search against a hand-solved piecewise-quadratic energy, the hold, the cycle
 !> test, the conditioning verdicts, the residual norm and
-!> the reuse key of the factorization.
+!> the reuse key of the factorization, the help of a run that did not converge.
 program test_contact_rules
    use vemcontact_kinds, only: wp, ip
    use vemcontact_testing, only: checker_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_contact_rules, only: line_search_step, needs_line_search, hold_nodes, &
                                        is_cycle, conditioning_verdict, residual_norm, matrix_key_t, key_of, &
-                                       same_key, cond_ok, cond_warn, cond_stop, cond_stop_penalty, armijo
+                                       same_key, cond_ok, cond_warn, cond_stop, cond_stop_penalty, armijo, &
+                                       nonconvergence_hint
    implicit none
    type(checker_t) :: t
    real(wp) :: step, tstar, tarm, disc
@@ -93,5 +94,21 @@ program test_contact_rules
    c%active(2) = .false.
    c%k(1) = 100.0_wp
    call t%check(.not. same_key(key, c), 'a stiffer spring (HARD after its search): refactorize')
+
+   ! ---- the help of a run that did not converge names only what the run can change
+   call t%check(index(nonconvergence_hint(.false., .true., 0.0_wp), 'SURFACE TO SURFACE') == 0 .and. &
+                index(nonconvergence_hint(.false., .true., 0.0_wp), 'SMALL SLIDING') == 0, &
+                'fixed pairing (SURFACE TO SURFACE, HARD): no pairing advice')
+   call t%check(index(nonconvergence_hint(.false., .true., 0.0_wp), 'STIFFNESS SCALE FACTOR') > 0, &
+                'HARD: a stiffer augmentation')
+   call t%check(index(nonconvergence_hint(.true., .false., 1.0e3_wp), 'SMALL SLIDING') > 0, &
+                'finite sliding: fix the pairing')
+   call t%check(index(nonconvergence_hint(.true., .false., 1.0e3_wp), 'HARD') == 0, &
+                'a moderate LINEAR penalty: no HARD advice')
+   call t%check(index(nonconvergence_hint(.true., .false., 1.0e8_wp), 'PRESSURE-OVERCLOSURE=HARD') > 0, &
+                'a stiff LINEAR penalty with finite sliding: HARD recommended')
+   call t%check(index(nonconvergence_hint(.true., .true., 0.0_wp), 'STIFFNESS SCALE FACTOR') > 0 .and. &
+                index(nonconvergence_hint(.false., .false., 0.0_wp), 'STIFFNESS SCALE FACTOR') == 0, &
+                'augmentation advice to HARD runs only')
    call t%finish()
 end program test_contact_rules

@@ -202,7 +202,7 @@ program test_deck_contact_errors
    call expect('geo_and_static_which', ins(15, '*GEOSTATIC'), 16, 'which already has *STATIC')
    call expect('geo_twice', rep(15, '*GEOSTATIC'//nl//'*GEOSTATIC'), 16, 'second *GEOSTATIC in the step')
    call expect('geo_outside', ins(13, '*GEOSTATIC'), 14, '*GEOSTATIC is only allowed inside a *STEP')
-   call expect('geo_data', rep(15, '*GEOSTATIC'//nl//'1., x'), 16, 'time increment value must be a number')
+   call expect('geo_data', rep(15, '*GEOSTATIC'//nl//'1., x'), 16, 'time period of the step must be a number')
    call expect('geo_param', rep(15, '*GEOSTATIC, UTOL=1.'), 15, 'unknown parameter UTOL of *GEOSTATIC')
    call expect('no_procedure', rep(15, '**'), 14, 'the step has no procedure')
    call t%finish()

@@ -110,7 +110,14 @@ program test_deck_errors
    call expect('node_in_step', ins(15, '*NODE'//achar(10)//'9, 0., 0.'), 16, '*NODE is not allowed inside a *STEP')
    call expect('no_static', rep(15, '** no static'), 14, 'the step has no procedure')
    call expect('two_static', ins(15, '*STATIC'), 16, 'second *STATIC in the step started at')
-   call expect('static_data', ins(15, '1., x'), 16, 'time increment value must be a number')
+   call expect('static_data', ins(15, '1., x'), 16, 'time period of the step must be a number')
+   ! the *STATIC data line: initial increment, period, minimum, maximum
+   call expect('static_negative', ins(15, '-0.1, 1.'), 16, 'the initial time increment must be positive, not -0.1')
+   call expect('static_zero_period', ins(15, '0.1, 0.'), 16, 'the time period of the step must be positive, not 0.')
+   call expect('static_min_above', ins(15, '0.1, 1., 0.2'), 16, &
+               'the minimum time increment 0.2 is larger than the initial increment 0.1')
+   call expect('static_max_below', ins(15, '0.1, 1., 0.01, 0.05'), 16, &
+               'the maximum time increment 0.05 is smaller than the initial increment 0.1')
    call expect('no_end_step', base(1:17), 14, 'the step is not closed by *END STEP')
    call expect('end_without_step', [character(len=w) :: base, '*END STEP'], 19, '*END STEP without a matching *STEP')
    call expect('step_in_step', ins(17, '*STEP'), 18, '*STEP inside a step: the step started at')
