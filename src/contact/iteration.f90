@@ -324,7 +324,7 @@ contains
       ! Newton on the pairing once the active set holds: the tangent carries the
       ! part of finite sliding (sliding_tangent), which the factor lacks: GMRES with
       ! the factor as preconditioner solves with it
-      s%op%sliding = s%settled .and. contact%has_sliding() .and. .not. contact%fric%on
+      s%op%sliding = s%settled .and. contact%has_sliding()
       ! the matrix of the current factor: solve again without factorizing; a
       ! matrix that differs from it only by a small move of the pairing: the old
       ! factor as the preconditioner
