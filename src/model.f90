@@ -10,6 +10,7 @@ module vemcontact_model
    public :: model_t, named_set_t, material_t, section_t, step_t
    public :: dof_value_t, dload_t, string_t, source_loc_t
    public :: surface_t, interaction_t, contact_pair_t, contact_controls_t, output_request_t
+   public :: uplift_t
    public :: find_set, location_string, output_requested, element_order, element_side
    public :: amplitude_t
 
@@ -212,6 +213,30 @@ module vemcontact_model
       type(source_loc_t) :: loc
    end type output_request_t
 
+   !> *UPLIFT (vemcontact): the water pressure inside the joints of one surface
+   !> interaction, acting on both faces and pushing them apart.  The head (the
+   !> elevation of the water surface, y up) falls linearly along the joint from the
+   !> heel to the toe, or through a drain line; the pressure at a point of elevation
+   !> y is gamma max(0, head - y).  With penetration, the joint's part open from the
+   !> heel carries the headwater (docs/deck-reference.md, docs/sliding-safety.md).
+   type :: uplift_t
+      integer :: interaction = 0              !< index into model%interactions
+      real(wp) :: heel(2) = 0.0_wp            !< where the headwater enters the joint
+      real(wp) :: toe(2) = 0.0_wp             !< where the tailwater stands
+      real(wp) :: head_heel = 0.0_wp          !< headwater elevation
+      real(wp) :: head_toe = 0.0_wp           !< tailwater elevation
+      real(wp) :: gamma = 0.0_wp              !< unit weight of water (UNIT WEIGHT=)
+      logical :: drained = .false.            !< a drain line is given
+      real(wp) :: drain(2) = 0.0_wp           !< a point of the drain line
+      !> drain effectiveness E (USACE): head at the drain = tail + (1 - E)(head - tail);
+      !> USBR's rule, a third of the difference above the tailwater, is E = 2/3
+      real(wp) :: effectiveness = 0.0_wp
+      !> pressure penetration (Abaqus' meaning): the open part contiguous from the heel
+      !> carries the headwater, the rest the distribution restarted at the crack tip
+      logical :: penetration = .false.
+      type(source_loc_t) :: loc
+   end type uplift_t
+
    !> One *STEP.  Loads follow CalculiX: with OP=MOD (default) a step's entries
    !> replace those of earlier steps on the same dof/element and keep the rest;
    !> OP=NEW on a keyword first removes everything of that kind from earlier steps.
@@ -236,6 +261,8 @@ module vemcontact_model
       type(dof_value_t), allocatable :: boundary(:)
       type(dof_value_t), allocatable :: cload(:)
       type(dload_t), allocatable :: dload(:)
+      !> *UPLIFT of the step: replaces an earlier one of the same interaction, holds after
+      type(uplift_t), allocatable :: uplift(:)
       !> the output requests in force in this step: those of the step, and for each
       !> category (node, element, contact) and kind (file, print) without a request in
       !> the step those of the step before (CalculiX: the first request of a kind in a

@@ -129,6 +129,9 @@ module vemcontact_contact_active_set
       !> the entry had a master segment at the start of the step and has none at its
       !> end: it slid past the end of an open master surface (set by the driver)
       logical, allocatable :: slid_off(:)
+      !> CFLUIDP: the uplift on each entry (vemcontact_contact_uplift), unallocated
+      !> when no *UPLIFT is in force
+      real(wp), allocatable :: cfluidp(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
       integer(ip), allocatable :: inserted(:)  !< nodes inserted for each pair (SURFACE TO SURFACE)
       !> the tangential law of each pair and the tangential state of each entry
@@ -1156,6 +1159,7 @@ contains
       allocate (tab%copen(self%n), tab%cpress(self%n), tab%cslip(self%n), tab%status(self%n))
       allocate (tab%cshear(self%n), source=0.0_wp)
       tab%cnarea = self%length*self%thick
+      if (allocated(self%cfluidp)) tab%cfluidp = self%cfluidp
       do i = 1, self%n
          tab%status(i) = merge(1, 0, self%active(i))
          if (self%active(i) .and. self%fric%state(i) == tangent_stick) tab%status(i) = 3

@@ -22,6 +22,9 @@ module vemcontact_contact_table
       !> CNAREA (Abaqus' name): the slave node's undeformed tributary length times the
       !> thickness, the area CPRESS acts on (sum CPRESS * CNAREA = transmitted force)
       real(wp), allocatable :: cnarea(:)
+      !> CFLUIDP: the water pressure in the joint (*UPLIFT), acting on both faces
+      !> beside the effective contact pressure CPRESS; unallocated without uplift
+      real(wp), allocatable :: cfluidp(:)
       !> 0 open, 1 closed (frictionless), 2 slid past the end of the master, 3 stick, 4 slip
       integer, allocatable :: status(:)
       integer, allocatable :: pair(:)

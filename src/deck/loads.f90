@@ -658,6 +658,7 @@ contains
       call move_alloc(a%boundary, b%boundary)
       call move_alloc(a%cload, b%cload)
       call move_alloc(a%dload, b%dload)
+      call move_alloc(a%uplift, b%uplift)
       call move_alloc(a%outputs, b%outputs)
       b%loc = a%loc
    end subroutine move_step
@@ -682,6 +683,7 @@ contains
       if (acc%nb > 0) s%boundary = acc%boundary(1:acc%nb)
       if (acc%nc > 0) s%cload = acc%cload(1:acc%nc)
       if (acc%nd > 0) s%dload = acc%dload(1:acc%nd)
+      if (allocated(acc%uplift)) s%uplift = acc%uplift
       allocate (s%outputs(acc%nout))
       if (acc%nout > 0) s%outputs = acc%outputs(1:acc%nout)
    end subroutine acc_to_step

@@ -16,7 +16,7 @@ module vemcontact_deck_parser
                                        kw_contact_pair, kw_contact_controls, kw_geostatic, kw_dsload, &
                                        kw_node_file, kw_el_file, kw_contact_file, kw_node_print, kw_el_print, &
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
-                                       kw_output, kw_friction
+                                       kw_output, kw_uplift, kw_friction
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section
@@ -24,6 +24,7 @@ module vemcontact_deck_parser
                                     read_procedure, end_step
    use vemcontact_deck_surface_loads, only: read_dsload
    use vemcontact_deck_outputs, only: read_output_request, read_output
+   use vemcontact_deck_uplift, only: read_uplift
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
                                       read_contact_pair, read_controls, read_friction
    implicit none
@@ -138,6 +139,8 @@ contains
                                      id == kw_contact_print)
          case (kw_output)
             call read_output(p, model, kw)
+         case (kw_uplift)
+            call read_uplift(p, model, kw)
          case (kw_end_step)
             call end_step(p, model)
             call no_data(p, '*END STEP')

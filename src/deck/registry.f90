@@ -23,7 +23,7 @@ module vemcontact_deck_registry
                                  kw_geostatic = 22, kw_dsload = 23, kw_node_file = 24, kw_el_file = 25, &
                                  kw_contact_file = 26, kw_node_print = 27, kw_el_print = 28, &
                                  kw_contact_print = 29, kw_node_output = 30, kw_element_output = 31, &
-                                 kw_contact_output = 32, kw_output = 33, kw_friction = 34
+                                 kw_contact_output = 32, kw_output = 33, kw_uplift = 34, kw_friction = 35
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -55,7 +55,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(34) = [ &
+   type(keyword_spec_t), parameter :: keywords(35) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -89,9 +89,10 @@ module vemcontact_deck_registry
                                       keyword_spec_t('ELEMENT OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('CONTACT OUTPUT', ctx_step, data_optional), &
                                       keyword_spec_t('OUTPUT', ctx_step, data_none), &
+                                      keyword_spec_t('UPLIFT', ctx_step, data_required), &
                                       keyword_spec_t('FRICTION', ctx_model, data_optional)]
 
-   type(param_spec_t), parameter :: params(112) = [ &
+   type(param_spec_t), parameter :: params(115) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -208,6 +209,10 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_output, 'TIME POINTS', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_output, 'NUMBER INTERVAL', par_value, .false., val_int, ''), &
                                     param_spec_t(kw_output, 'VARIABLE', par_value, .false., val_name, 'PRESELECT ALL'), &
+                                    ! *UPLIFT (vemcontact, src/deck/uplift.f90)
+                                    param_spec_t(kw_uplift, 'INTERACTION', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_uplift, 'UNIT WEIGHT', par_value, .true., val_real, ''), &
+                                    param_spec_t(kw_uplift, 'PENETRATION', par_flag, .false., val_name, ''), &
                                     param_spec_t(kw_friction, 'ROUGH', par_flag, .false., val_name, ''), &
                                     ! vemcontact: Mohr-Coulomb cohesion; sign checked by the handler
                                     param_spec_t(kw_friction, 'COHESION', par_value, .false., val_real, '')]

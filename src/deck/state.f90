@@ -7,7 +7,7 @@
 module vemcontact_deck_state
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, source_loc_t, named_set_t, dof_value_t, dload_t, &
-                               find_set, procedure_static, string_t, output_request_t
+                               find_set, procedure_static, string_t, output_request_t, uplift_t
    use vemcontact_deck_source, only: deck_source_t
    use vemcontact_deck_diagnostics, only: diag_t
    use vemcontact_deck_fields, only: field_list_t, edit_distance, to_upper, squeeze
@@ -35,6 +35,7 @@ module vemcontact_deck_state
    type :: step_acc_t
       type(dof_value_t), allocatable :: boundary(:), cload(:)
       type(dload_t), allocatable :: dload(:)
+      type(uplift_t), allocatable :: uplift(:)   !< *UPLIFT (vemcontact)
       integer :: nb = 0, nc = 0, nd = 0
       logical :: bnew = .false., cnew = .false., dnew = .false.  !< OP=NEW seen
       integer :: procedure = procedure_static

@@ -36,7 +36,8 @@ module vemcontact_driver_linear
    use vemcontact_driver_partition, only: partition_t, partition_mesh
    use vemcontact_clock, only: wall_time
    use vemcontact_contact_active_set, only: contact_state_t
-   use vemcontact_contact_iteration, only: contact_system_t, solve_contact, judge_conditioning
+   use vemcontact_contact_iteration, only: contact_system_t, judge_conditioning
+   use vemcontact_driver_penetration, only: solve_with_uplift
    use vemcontact_contact_rules, only: matrix_key_t
    use vemcontact_contact_search, only: merge_node_pairs
    use vemcontact_sparse_matvec, only: sym_matvec
@@ -269,7 +270,7 @@ contains
       call assemble_loads(model, st%force, st%dload, f)
       if (present(contact)) then
          if (contact%n > 0) then
-            call solve_contact(self, model, fixed, st%prescribed, f, u, contact, error, log)
+            call solve_with_uplift(self, model, st%uplift, fixed, st%prescribed, f, u, contact, error, log)
             return
          end if
       end if

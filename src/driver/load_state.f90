@@ -6,7 +6,7 @@
 !> every step and are not removed by OP=NEW.
 module vemcontact_driver_load_state
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_model, only: model_t, step_t, dload_t, dof_value_t
+   use vemcontact_model, only: model_t, step_t, dload_t, dof_value_t, uplift_t
    implicit none
    private
 
@@ -20,6 +20,7 @@ module vemcontact_driver_load_state
       !> (index into model%amplitudes, 0: the step's ramp)
       integer, allocatable :: fixed_amp(:), force_amp(:)
       type(dload_t), allocatable :: dload(:)  !< distributed loads in force
+      type(uplift_t), allocatable :: uplift(:) !< *UPLIFT in force, one per interaction
       logical, allocatable :: base_fixed(:)   !< model-definition constraints
       real(wp), allocatable :: base_value(:)
       integer, allocatable :: base_amp(:)
@@ -37,7 +38,7 @@ contains
       allocate (st%prescribed(ndof), source=0.0_wp)
       allocate (st%force(ndof), source=0.0_wp)
       allocate (st%fixed_amp(ndof), st%force_amp(ndof), source=0)
-      allocate (st%dload(0))
+      allocate (st%dload(0), st%uplift(0))
       if (allocated(model%initial%boundary)) &
          call set_dofs(model%initial%boundary, st%fixed, st%prescribed, st%fixed_amp)
       st%base_fixed = st%fixed
@@ -69,7 +70,26 @@ contains
          allocate (st%dload(0))
       end if
       if (allocated(step%dload)) call merge_dloads(st%dload, step%dload)
+      if (allocated(step%uplift)) call merge_uplift(st%uplift, step%uplift)
    end subroutine advance_load_state
+
+   !> A step's *UPLIFT replaces the one in force on the same interaction.
+   pure subroutine merge_uplift(old, new)
+      type(uplift_t), allocatable, intent(inout) :: old(:)
+      type(uplift_t), intent(in) :: new(:)
+      integer :: k, j
+      logical :: replaced
+      do k = 1, size(new)
+         replaced = .false.
+         do j = 1, size(old)
+            if (old(j)%interaction == new(k)%interaction) then
+               old(j) = new(k)
+               replaced = .true.
+            end if
+         end do
+         if (.not. replaced) old = [old, new(k)]
+      end do
+   end subroutine merge_uplift
 
    !> Set the value of each listed dof, the last entry for a dof winning.
    pure subroutine set_dofs(entries, flag, value, amp)

@@ -599,6 +599,7 @@ contains
       character(len=160) :: buf
       character(len=:), allocatable :: name
       integer :: ip_
+      real(wp), allocatable :: fluid(:)
       associate (tab => rs%res%tab, u_out => rs%res%u_out)
          tab = rs%contact%table(model, u_out)
          if (sel%contact()) then
@@ -610,6 +611,9 @@ contains
          end if
          do ip_ = 1, size(model%pairs)
             if (.not. sel%contact()) exit
+            ! CFLUIDP with *UPLIFT (an unallocated actual argument is absent)
+            if (allocated(fluid)) deallocate (fluid)
+            if (allocated(tab%cfluidp)) fluid = pack(tab%cfluidp, tab%pair == ip_)
             write (buf, '(a,i0,a,i4.4,a)') '_contact_pair', ip_, '_', istep, '.csv'
             call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf), tab, ip_, error, sel)
             if (allocated(error)) return
@@ -618,7 +622,7 @@ contains
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
                                      pack(tab%status, tab%pair == ip_), error, sel, &
-                                     cshear=pack(tab%cshear, tab%pair == ip_))
+                                     cshear=pack(tab%cshear, tab%pair == ip_), cfluidp=fluid)
             if (allocated(error)) return
          end do
       end associate

@@ -5,7 +5,8 @@
 !> positive in compression: the normal force the solution balances / CNAREA), CSLIP
 !> (tangential displacement of the slave node relative to its master point, along the
 !> master segment's direction a -> b; 0 without a master segment), CNAREA (tributary
-!> length * thickness), STATUS (1 closed, 0 open, 2 slid off the master's end), PAIR.
+!> length * thickness), STATUS (1 closed, 0 open, 2 slid off the master's end), PAIR;
+!> with *UPLIFT, CFLUIDP (the water pressure in the joint) beside CPRESS.
 module vemcontact_output_contact
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t
@@ -42,6 +43,7 @@ contains
       head = 'node,x,y'
       if (w%copen) head = head//',COPEN'
       if (w%cpress) head = head//',CPRESS,CSHEAR'
+      if (w%cpress .and. allocated(tab%cfluidp)) head = head//',CFLUIDP'
       if (w%cslip) head = head//',CSLIP'
       call out%write(head//',CNAREA,STATUS'//new_line('a'))
       do k = 1, size(tab%node_id)
@@ -53,6 +55,7 @@ contains
          if (w%copen) call column(tab%copen(k))
          if (w%cpress) call column(tab%cpress(k))
          if (w%cpress) call column(shear(k))
+         if (w%cpress .and. allocated(tab%cfluidp)) call column(tab%cfluidp(k))
          if (w%cslip) call column(tab%cslip(k))
          call column(tab%cnarea(k))
          call out%write(line//','//status_name(tab%status(k))//new_line('a'))
@@ -132,6 +135,8 @@ contains
       if (w%cpress) call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios, z)
       if (w%cpress .and. allocated(tab%cshear)) &
          call put_array(unit, 'type="Float64" Name="CSHEAR"', as_bytes(tab%cshear), ios, z)
+      if (w%cpress .and. allocated(tab%cfluidp)) &
+         call put_array(unit, 'type="Float64" Name="CFLUIDP"', as_bytes(tab%cfluidp), ios, z)
       if (w%cslip) call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios, z)
       call put_array(unit, 'type="Float64" Name="CNAREA"', as_bytes(tab%cnarea), ios, z)
       ibuf = int(tab%status, ip)

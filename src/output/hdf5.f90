@@ -256,9 +256,9 @@ contains
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
    !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CSHEAR
    !> (with CPRESS, when given), CNAREA and STATUS (0 open, 1 closed, 2 slid off, 3 stick,
-   !> 4 slip); then flush.
+   !> 4 slip), with *UPLIFT CFLUIDP beside CPRESS; then flush.
    subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel, &
-                               cshear)
+                               cshear, cfluidp)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
@@ -268,6 +268,8 @@ contains
       type(field_selection_t), intent(in), optional :: sel
       !> the shear traction along the master's tangent (written beside CPRESS)
       real(wp), intent(in), optional :: cshear(:)
+      !> CFLUIDP, the water pressure in the joint (*UPLIFT), written beside CPRESS
+      real(wp), intent(in), optional :: cfluidp(:)
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
@@ -292,6 +294,10 @@ contains
       if (present(cshear)) then
          if (.not. allocated(error) .and. w%cpress) &
             call put_real(self, grp, 'CSHEAR', shape(cshear, hsize_t), cshear, error)
+      end if
+      if (present(cfluidp)) then
+         if (.not. allocated(error) .and. w%cpress) &
+            call put_real(self, grp, 'CFLUIDP', shape(cfluidp, hsize_t), cfluidp, error)
       end if
       if (.not. allocated(error) .and. w%cslip) &
          call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)

@@ -117,6 +117,9 @@ contains
                      case ('CPRESS')
                         call row(var, 'node', tab%node_id(n), var, tab%cpress(n))
                         if (allocated(tab%cshear)) call row('CSHEAR', 'node', tab%node_id(n), 'CSHEAR', tab%cshear(n))
+                        ! with *UPLIFT the water pressure in the joint, beside the effective CPRESS
+                        if (allocated(tab%cfluidp)) &
+                           call row('CFLUIDP', 'node', tab%node_id(n), 'CFLUIDP', tab%cfluidp(n))
                      case ('CSLIP')
                         call row(var, 'node', tab%node_id(n), var, tab%cslip(n))
                      end select

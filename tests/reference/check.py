@@ -103,6 +103,38 @@ def block(r):
     return worst < 0.01, f"section equilibrium at y = 0.3, 0.5, 0.7 within {worst:.3%}"
 
 
+def dam_base(r, job):
+    """Dam on a horizontal base joint (inputs/dam_base_*.inp), step 2 (full reservoir): the
+    dam's equilibrium with what the joint reports, N + U = W and the moment of
+    (CPRESS + CFLUIDP) * CNAREA about the heel = W (x_c - 4) + H h/3 (the base is held
+    horizontally at its own level: no moment), both within 1e-6 (measured 8e-9); U the
+    guideline's formula evaluated at the slave nodes (the uplift variants); every node
+    closed, as the gravity method finds (heel effective stress +50.7 kPa), so the
+    penetration variant equals the linear one."""
+    c = r["steps"][2]["pairs"]["pair_1"]
+    xy = c["coordinates"] if c["coordinates"].shape[-1] == 2 else c["coordinates"].T
+    x = xy[:, 0]
+    a = c["CNAREA"]
+    uplift = c.get("CFLUIDP", np.zeros_like(a))
+    W, xc, H = 24000.0 * 17.5, 4.0 + 13.0 / 7.0, 0.5 * 9810.0 * 25.0   # x_c of the dam polygon
+    N, U = np.sum(c["CPRESS"] * a), np.sum(uplift * a)
+    M = np.sum((c["CPRESS"] + uplift) * a * (x - 4.0))
+    s = np.clip((x - 4.0) / 5.0, 0.0, 1.0)
+    if job.endswith("drained"):
+        hd = 10.0 + 5.0 / 3.0
+        head = np.where(s <= 0.2, 15.0 + (hd - 15.0) * s / 0.2, hd + (10.0 - hd) * (s - 0.2) / 0.8)
+    elif job.endswith("dry"):
+        head = np.full_like(s, 10.0)
+    else:
+        head = 15.0 - 5.0 * s
+    formula = np.sum(9810.0 * (head - 10.0) * a)
+    ok = (abs(N + U - W) < 1e-6 * W and abs(M / (W * (xc - 4.0) + H * 5.0 / 3.0) - 1) < 1e-6
+          and abs(U - formula) <= 1e-12 * W and (c["STATUS"] == 1).all())
+    return ok, (f"N = {N:.6g}, U = {U:.6g} (formula {formula:.6g}), N + U - W = {N + U - W:.3g}, "
+                f"moment {M / (W * (xc - 4.0) + H * 5.0 / 3.0) - 1:.2g} relative, "
+                f"{int(np.sum(c['STATUS'] == 1))} of {len(a)} nodes closed")
+
+
 def check(path):
     job = os.path.basename(path)[:-3]
     r = load(path)
@@ -123,6 +155,8 @@ def check(path):
         return dam(r)
     if job == "block_selfweight":
         return block(r)
+    if job.startswith("dam_base_"):
+        return dam_base(r, job)
     return False, "no check known for this deck: add one"
 
 

@@ -27,7 +27,7 @@ def _parser():
     s.add_argument("--processes", type=int, help="worker processes for large Voronoi meshes (default: CPUs)")
     s.add_argument("-v", "--verbose", action="store_true", help="print the Lloyd energy of each iteration")
     s = sub.add_parser("paper", help="regenerate the meshes of the paper's four examples")
-    s.add_argument("--scenes", default=str(SCENES), help=f"scene directory (default {SCENES})")
+    s.add_argument("--scenes", default=str(SCENES), help=f"scene directory (default {SCENES}): its ex*.toml")
     s.add_argument("-o", "--output", default=str(OUTDIR), help=f"output directory (default {OUTDIR})")
     s = sub.add_parser("gmsh", help="convert a Gmsh .msh mesh (2.2 or 4.1, ASCII or binary)")
     s.add_argument("msh")
@@ -50,7 +50,9 @@ def main(argv=None):
                             processes=args.processes)
         elif args.cmd == "paper":
             from .scene import mesh_scene_file
-            files = sorted(Path(args.scenes).glob("*.toml"))
+            # the paper's examples are ex1..ex4; the other scenes (the sliding-safety
+            # dams) are meshed one by one with `vc-mesh scene`
+            files = sorted(Path(args.scenes).glob("ex*.toml"))
             if not files:
                 raise MeshError(f"no scene files in {args.scenes}")
             t0 = time.time()

@@ -1,0 +1,143 @@
+!> Uplift: the water pressure inside a joint (*UPLIFT), on both of its faces.
+!>
+!> The pressure is evaluated at each slave node from the head distribution along the
+!> joint (linear from the heel to the toe, or through a drain line; with a crack open
+!> from the heel, the headwater over the crack and the distribution restarted at its
+!> tip), and applied exactly where the contact pressure acts: at the slave entry, over
+!> its tributary area CNAREA, along the entry's normal, pushing the slave node away
+!> from its master point and the master nodes (with the weights 1 - xi, xi) the other
+!> way.  The two faces so carry equal and opposite forces, and the reported CPRESS
+!> (the effective contact pressure) plus CFLUIDP (this pressure) is the total normal
+!> stress of the joint node by node.
+module vemcontact_contact_uplift
+   use vemcontact_kinds, only: wp, ip
+   use vemcontact_model, only: model_t, uplift_t
+   use vemcontact_contact_active_set, only: contact_state_t
+   implicit none
+   private
+
+   public :: joint_position, uplift_head, uplift_pressure, uplift_of_entries, crack_front, add_uplift_forces
+
+contains
+
+   !> Position of point x along the heel-toe chord of `up`: 0 at the heel, 1 at the
+   !> toe, clipped to [0, 1] (a point is taken at its projection on the chord).
+   pure real(wp) function joint_position(up, x) result(s)
+      type(uplift_t), intent(in) :: up
+      real(wp), intent(in) :: x(2)
+      s = dot_product(x - up%heel, up%toe - up%heel)/dot_product(up%toe - up%heel, up%toe - up%heel)
+      s = min(1.0_wp, max(0.0_wp, s))
+   end function joint_position
+
+   !> Head (elevation of the water surface) at position s of the joint when water
+   !> fills a crack from the heel to s_tip (0: none): the headwater over the crack;
+   !> beyond it linear to the tailwater at the toe, through the drain head
+   !> tail + (1 - E)(head - tail) at the drain line while the crack has not passed it
+   !> (a crack beyond the drain line leaves the drains without effect).
+   pure real(wp) function uplift_head(up, s, s_tip) result(h)
+      type(uplift_t), intent(in) :: up
+      real(wp), intent(in) :: s, s_tip
+      real(wp) :: sd, hd
+      if (s <= s_tip .or. s_tip >= 1.0_wp) then
+         h = up%head_heel
+         return
+      end if
+      sd = -1.0_wp
+      if (up%drained) sd = joint_position(up, up%drain)
+      if (sd > s_tip) then
+         hd = up%head_toe + (1.0_wp - up%effectiveness)*(up%head_heel - up%head_toe)
+         if (s <= sd) then
+            h = up%head_heel + (hd - up%head_heel)*(s - s_tip)/(sd - s_tip)
+         else
+            h = hd + (up%head_toe - hd)*(s - sd)/(1.0_wp - sd)
+         end if
+      else
+         h = up%head_heel + (up%head_toe - up%head_heel)*(s - s_tip)/(1.0_wp - s_tip)
+      end if
+   end function uplift_head
+
+   !> Water pressure gamma_w max(0, head - y) at the joint point x (y up).
+   pure real(wp) function uplift_pressure(up, x, s_tip) result(p)
+      type(uplift_t), intent(in) :: up
+      real(wp), intent(in) :: x(2), s_tip
+      p = up%gamma*max(0.0_wp, uplift_head(up, joint_position(up, x), s_tip) - x(2))
+   end function uplift_pressure
+
+   !> The uplift in force on each slave entry of `contact`: the index into `uplifts`
+   !> of its pair's interaction, 0 for none.
+   pure function uplift_of_entries(model, contact, uplifts) result(k)
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(in) :: contact
+      type(uplift_t), intent(in) :: uplifts(:)
+      integer, allocatable :: k(:)
+      integer :: i, j
+      allocate (k(contact%n), source=0)
+      do i = 1, contact%n
+         do j = 1, size(uplifts)
+            if (model%pairs(contact%pair(i))%interaction == uplifts(j)%interaction) k(i) = j
+         end do
+      end do
+   end function uplift_of_entries
+
+   !> Pressure penetration: the position of the last slave node of uplift `j` open
+   !> contiguously from the heel (0 when the node nearest the heel is closed), with
+   !> the number of those open nodes and of all the uplift's nodes.  A node is open
+   !> when its contact is not active (Abaqus' criterion with zero critical pressure).
+   pure subroutine crack_front(model, contact, which, j, up, s_tip, nopen, nall)
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(in) :: contact
+      integer, intent(in) :: which(:), j
+      type(uplift_t), intent(in) :: up
+      real(wp), intent(out) :: s_tip
+      integer, intent(out) :: nopen, nall
+      real(wp), allocatable :: s(:)
+      logical, allocatable :: open(:), done(:)
+      integer :: i, m, next
+      nall = count(which == j)
+      allocate (s(contact%n), open(contact%n), done(contact%n))
+      do i = 1, contact%n
+         s(i) = joint_position(up, model%x(:, contact%node(i)))
+         open(i) = .not. contact%active(i)
+      end do
+      done = which /= j
+      s_tip = 0.0_wp
+      nopen = 0
+      ! the uplift's nodes in order from the heel, until the first closed one
+      do m = 1, nall
+         next = minloc(s, mask=.not. done, dim=1)
+         done(next) = .true.
+         if (.not. open(next)) exit
+         nopen = nopen + 1
+         s_tip = s(next)
+      end do
+   end subroutine crack_front
+
+   !> Add to f the uplift's forces on both faces and set each entry's pressure
+   !> (cfluidp, 0 where no uplift acts) for the crack fronts s_tip(j) of the uplifts;
+   !> the pairing (segment, xi, normal) is the contact state's current one.  An entry
+   !> without a master segment (beyond the master's ends) carries none.
+   pure subroutine add_uplift_forces(model, contact, uplifts, which, s_tip, f, cfluidp)
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(in) :: contact
+      type(uplift_t), intent(in) :: uplifts(:)
+      integer, intent(in) :: which(:)
+      real(wp), intent(in) :: s_tip(:)
+      real(wp), intent(inout) :: f(:)
+      real(wp), intent(out) :: cfluidp(:)
+      integer(ip) :: nodes(3)
+      real(wp) :: force, w(3)
+      integer :: i, k
+      cfluidp = 0.0_wp
+      do i = 1, contact%n
+         if (which(i) == 0) cycle
+         cfluidp(i) = uplift_pressure(uplifts(which(i)), model%x(:, contact%node(i)), s_tip(which(i)))
+         if (contact%iseg(i) == 0) cycle
+         nodes = [contact%node(i), contact%pairs(contact%pair(i))%seg(:, contact%iseg(i))]
+         force = cfluidp(i)*contact%length(i)*contact%thick(i)
+         w = [1.0_wp, -(1.0_wp - contact%xi(i)), -contact%xi(i)]
+         do k = 1, 3
+            f(2*nodes(k) - 1:2*nodes(k)) = f(2*nodes(k) - 1:2*nodes(k)) + w(k)*force*contact%normal(:, i)
+         end do
+      end do
+   end subroutine add_uplift_forces
+end module vemcontact_contact_uplift

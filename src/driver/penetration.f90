@@ -1,0 +1,141 @@
+!> The contact solve of a load state with water in the joints (*UPLIFT): the uplift
+!> forces on both faces of each joint join the external forces, and with pressure
+!> penetration an outer loop around the contact iteration lets the water follow the
+!> opening: the part of a joint open contiguously from its heel carries the headwater,
+!> the rest the prescribed distribution restarted at the crack tip, and the state is
+!> solved again until the open part no longer changes (opening and uplift agree).
+!> Starting from the uncracked joint, each pass can only lengthen the crack while the
+!> opening grows with the uplift, so the loop reaches the shortest crack in
+!> equilibrium with its own water, the one the no-tension gravity method finds.
+module vemcontact_driver_penetration
+   use vemcontact_kinds, only: wp
+   use vemcontact_error, only: error_t, fatal_error, err_solver
+   use vemcontact_model, only: model_t, uplift_t
+   use vemcontact_contact_iteration, only: contact_system_t, iteration_record_t, solve_contact
+   use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_uplift, only: uplift_of_entries, crack_front, add_uplift_forces
+   use vemcontact_log, only: logger_t
+   implicit none
+   private
+
+   public :: solve_with_uplift
+
+   !> Passes of the pressure-penetration loop before it is declared unsettled: each
+   !> pass opens at least one more node, so a joint of n slave nodes needs at most n;
+   !> the dams of the tests settle in 2-4.
+   integer, parameter :: max_passes = 100
+
+contains
+
+   !> solve_contact with the uplifts in force (none: solve_contact itself).  The
+   !> contact state's cfluidp holds the uplift of each slave entry afterwards.
+   subroutine solve_with_uplift(sys, model, uplifts, fixed, prescribed, fext, u, contact, error, log)
+      class(contact_system_t), intent(inout), target :: sys
+      type(model_t), intent(in) :: model
+      type(uplift_t), intent(in) :: uplifts(:)
+      logical, intent(in), target :: fixed(:)
+      real(wp), intent(in) :: prescribed(:), fext(:)
+      real(wp), intent(inout) :: u(:)
+      type(contact_state_t), intent(inout), target :: contact
+      type(error_t), allocatable, intent(out) :: error
+      type(logger_t), intent(inout), optional :: log
+      integer, allocatable :: which(:), nopen(:), nall(:)
+      real(wp), allocatable :: s_tip(:), s_new(:), f(:), seen(:, :)
+      type(iteration_record_t), allocatable :: records(:)
+      integer :: pass, j, iterations, factorizations
+      real(wp) :: t_fact, t_solve, t_search
+      logical :: changed
+      character(len=200) :: buf
+
+      if (allocated(contact%cfluidp)) deallocate (contact%cfluidp)
+      if (size(uplifts) == 0) then
+         call solve_contact(sys, model, fixed, prescribed, fext, u, contact, error, log)
+         return
+      end if
+      which = uplift_of_entries(model, contact, uplifts)
+      allocate (s_tip(size(uplifts)), s_new(size(uplifts)), source=0.0_wp)
+      allocate (nopen(size(uplifts)), nall(size(uplifts)), source=0)
+      allocate (contact%cfluidp(contact%n), f(size(fext)), records(0), seen(size(uplifts), 0))
+      iterations = 0
+      factorizations = 0
+      t_fact = 0.0_wp
+      t_solve = 0.0_wp
+      t_search = 0.0_wp
+      do pass = 1, max_passes
+         ! the pairing the uplift acts along: the state the solve starts from
+         call contact%project(model, u, error)
+         if (allocated(error)) return
+         f = fext
+         call add_uplift_forces(model, contact, uplifts, which, s_tip, f, contact%cfluidp)
+         call solve_contact(sys, model, fixed, prescribed, f, u, contact, error, log)
+         if (allocated(error)) return
+         records = [records, sys%records]
+         iterations = iterations + sys%iterations
+         factorizations = factorizations + sys%factorizations
+         t_fact = t_fact + sys%t_factorize
+         t_solve = t_solve + sys%t_solve
+         t_search = t_search + sys%t_search
+         changed = .false.
+         do j = 1, size(uplifts)
+            if (.not. uplifts(j)%penetration) cycle
+            call crack_front(model, contact, which, j, uplifts(j), s_new(j), nopen(j), nall(j))
+            if (abs(s_new(j) - s_tip(j)) > 0.0_wp) changed = .true.
+         end do
+         if (.not. changed) exit
+         ! a crack that returns to an earlier length would alternate for ever
+         seen = reshape([seen, s_tip], [size(uplifts), pass])
+         if (any([(all(abs(seen(:, j) - s_new) <= 0.0_wp), j=1, pass)])) then
+            call fatal_error(error, 'error: pressure penetration cycles: the open part of a joint returns '// &
+                             'to an earlier length with the water in it (a crack that closes under its own '// &
+                             'water); try a stiffer joint (the penalty K) or HARD contact', err_solver)
+            return
+         end if
+         s_tip = s_new
+         do j = 1, size(uplifts)
+            if (.not. uplifts(j)%penetration) cycle
+            write (buf, '(2x,a,i0,a,es12.5,a,i0,a,i0,a)') 'pressure penetration, pass ', pass, &
+               ': water entered ', entered(j), ' from the heel (', nopen(j), ' of ', nall(j), &
+               ' slave nodes open from the heel) on interaction '
+            if (present(log)) call log%say(trim(buf)//' '//model%interactions(uplifts(j)%interaction)%name// &
+                                           '; solving again with the headwater in the crack')
+         end do
+      end do
+      if (pass > max_passes) then
+         write (buf, '(a,i0,a)') 'error: pressure penetration did not settle in ', max_passes, &
+            ' passes: the open part of a joint keeps changing with the water in it'
+         call fatal_error(error, trim(buf), err_solver)
+         return
+      end if
+      sys%records = records
+      sys%iterations = iterations
+      sys%factorizations = factorizations
+      sys%t_factorize = t_fact
+      sys%t_solve = t_solve
+      sys%t_search = t_search
+      if (present(log)) call summary()
+   contains
+      !> Length of the crack of uplift j that the water filled.
+      pure real(wp) function entered(j)
+         integer, intent(in) :: j
+         entered = s_tip(j)*norm2(uplifts(j)%toe - uplifts(j)%heel)
+      end function entered
+
+      !> Per uplift: the uplift force (sum CFLUIDP * CNAREA) and, with penetration,
+      !> how far the water entered.
+      subroutine summary()
+         real(wp) :: force
+         do j = 1, size(uplifts)
+            force = sum(contact%cfluidp*contact%length*contact%thick, mask=which == j)
+            write (buf, '(2x,a,es13.6,a)') 'uplift on interaction '// &
+               model%interactions(uplifts(j)%interaction)%name//': force ', force, &
+               ' (sum of CFLUIDP * CNAREA)'
+            if (uplifts(j)%penetration) then
+               write (buf, '(a,a,es12.5,a,i0,a,i0,a,i0,a)') trim(buf), '; water entered ', entered(j), &
+                  ' from the heel (', nopen(j), ' of ', nall(j), ' slave nodes open from the heel; contact '// &
+                  'solved ', pass, ' times)'
+            end if
+            call log%say(trim(buf))
+         end do
+      end subroutine summary
+   end subroutine solve_with_uplift
+end module vemcontact_driver_penetration
