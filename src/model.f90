@@ -172,6 +172,16 @@ module vemcontact_model
       real(wp) :: c0 = 0.0_wp
       logical :: hard = .false.               !< PRESSURE-OVERCLOSURE=HARD
       logical :: has_behavior = .false.
+      !> *FRICTION: Coulomb |t_T| <= mu p (CalculiX's data line mu [, stick slope]); with
+      !> the stick slope (traction per unit elastic slip) stick is a tangential spring,
+      !> without it exact (a multiplier); ROUGH: no slip; COHESION=c (ours): Mohr-Coulomb,
+      !> |t_T| <= c + mu p while closed.  Without *FRICTION, or with mu = 0 and no
+      !> cohesion, the interaction is frictionless.
+      logical :: has_friction = .false.
+      real(wp) :: mu = 0.0_wp
+      real(wp) :: stick_slope = 0.0_wp        !< 0: exact stick
+      real(wp) :: cohesion = 0.0_wp
+      logical :: rough = .false.
       type(source_loc_t) :: loc
    end type interaction_t
 

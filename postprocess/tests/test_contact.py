@@ -385,7 +385,7 @@ def test_slip_of_a_sliding_block(exe, tmp_path):
     tangent_x = -1.0
     for step, expected in ((1, 0.0), (2, tangent_x * d)):
         c = read_csv(tmp_path / f"slip_contact_pair1_{step:04d}.csv")
-        assert list(c.dtype.names) == ["node", "x", "y", "COPEN", "CPRESS", "CSLIP", "CNAREA", "STATUS"]
+        assert list(c.dtype.names) == ["node", "x", "y", "COPEN", "CPRESS", "CSHEAR", "CSLIP", "CNAREA", "STATUS"]
         assert len(c) == nx + 1 and (c["STATUS"] == "CLOSED").all() and (c["CPRESS"] > 0).all()
         if step == 1:
             # the geostatic step's displacements are the reference: exactly zero

@@ -162,21 +162,22 @@ def contact_variant(tmp_path, exe, replace):
 
 
 def test_contact_requests(exe, tmp_path):
-    """CSTR alone: CPRESS (with the labels CNAREA, STATUS) but no COPEN, CSLIP in the CSV,
+    """CSTR alone: CPRESS and CSHEAR (with the labels CNAREA, STATUS) but no COPEN, CSLIP in the CSV,
     the contact VTU and HDF5; no *CONTACT FILE: no contact results at all."""
     d = contact_variant(tmp_path / "cstr", exe, "*CONTACT FILE\nCSTR\n")
     with open(d / "c_contact_pair1_0001.csv") as fh:
-        assert fh.readline().strip() == "node,x,y,CPRESS,CNAREA,STATUS"
+        assert fh.readline().strip() == "node,x,y,CPRESS,CSHEAR,CNAREA,STATUS"
     point, _ = vtu_fields(d / "c_contact_0001.vtu")
-    assert point == {"U", "CPRESS", "CNAREA", "STATUS", "PAIR", "NODE_ID"}
+    assert point == {"U", "CPRESS", "CSHEAR", "CNAREA", "STATUS", "PAIR", "NODE_ID"}
     with h5py.File(d / "c.h5") as f:
-        assert set(f["steps/0001/contact/pair_1"]) == {"node_ids", "coordinates", "CPRESS", "CNAREA", "STATUS"}
+        assert set(f["steps/0001/contact/pair_1"]) == {"node_ids", "coordinates", "CPRESS", "CSHEAR", "CNAREA",
+                                                       "STATUS"}
     # *CONTACT PRINT CSTR, CDIS: every slave node's CPRESS, COPEN, CSLIP, named by the slave surface
     rows = read_print(d / "c_print_0001.csv")
     with h5py.File(d / "c.h5") as f:
         nslave = len(f["steps/0001/contact/pair_1/node_ids"])
         cpress = dict(zip(f["steps/0001/contact/pair_1/node_ids"][...], f["steps/0001/contact/pair_1/CPRESS"][...]))
-    for var in ("CPRESS", "COPEN", "CSLIP"):
+    for var in ("CPRESS", "CSHEAR", "COPEN", "CSLIP"):
         assert len([r for r in rows if r["variable"] == var]) == nslave
     for r in rows:
         if r["variable"] == "CPRESS":

@@ -29,6 +29,8 @@ module vemcontact_contact_active_set
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_contact_spring, only: spring_t
    use vemcontact_contact_table, only: contact_table_t
+   use vemcontact_contact_tangential, only: friction_state_t, make_law
+   use vemcontact_contact_friction, only: tangent_stick, tangent_slip
    implicit none
    private
 
@@ -132,6 +134,9 @@ module vemcontact_contact_active_set
       real(wp), allocatable :: cfluidp(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
       integer(ip), allocatable :: inserted(:)  !< nodes inserted for each pair (SURFACE TO SURFACE)
+      !> the tangential law of each pair and the tangential state of each entry
+      !> (vemcontact_contact_tangential): forces along the unit tangent t = (-n_y, n_x)
+      type(friction_state_t) :: fric
    contains
       procedure :: init
       procedure :: graph_pairs
@@ -159,6 +164,13 @@ module vemcontact_contact_active_set
       procedure :: table
       procedure :: max_penetration
       procedure :: max_pressure
+      procedure :: update_friction
+      procedure :: augment_friction
+      procedure :: commit_friction
+      procedure :: has_exact_friction
+      procedure :: tangential_line_terms
+      procedure :: count_state
+      procedure :: has_coupling
    end type contact_state_t
 
 contains
@@ -239,11 +251,59 @@ contains
          self%k(i) = self%pairs(self%pair(i))%slope*self%length(i)*self%thick(i)
          self%k_full(i) = self%k(i)
       end do
+      call init_friction(self, model, error)
+      if (allocated(error)) return
       if (self%n == 0 .and. size(model%pairs) > 0) then
          call fatal_error(error, location_string(model, model%pairs(1)%loc)// &
                           ': error: the contact pairs have no slave nodes', err_input)
       end if
    end subroutine init
+
+   !> The tangential law of every pair and the tangential spring of every entry: the
+   !> stick slope times the tributary area, or for exact stick the augmentation
+   !> stiffness of HARD (hard_stiffness E/h, scaled by STIFFNESS SCALE FACTOR).
+   !> Friction with the finite sliding of NODE TO SURFACE (the pairing found anew at
+   !> every iteration) is refused: the stick/slip states and the re-pairing did not
+   !> settle together (a block pushed up an inclined joint cycled with LINEAR contact
+   !> and took 12 iterations with HARD), so the pair must keep its pairing.
+   subroutine init_friction(self, model, error)
+      type(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: error
+      real(wp), allocatable :: slope(:)
+      integer :: p, i
+      allocate (self%fric%laws(size(self%pairs)), slope(size(self%pairs)))
+      call self%fric%allocate_entries(self%n)
+      do p = 1, size(self%pairs)
+         associate (it => model%interactions(model%pairs(p)%interaction))
+            call make_law(it%has_friction, it%rough, it%mu, it%stick_slope, it%cohesion, self%fric%laws(p))
+         end associate
+         if (self%fric%laws(p)%law%frictional() .and. .not. self%pairs(p)%small_sliding) then
+            call append_message(error, location_string(model, model%pairs(p)%loc)//': error: friction '// &
+                                '(*FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING'//new_line('a')// &
+                                '  = help: write *CONTACT PAIR, INTERACTION=..., TYPE=NODE TO SURFACE, SMALL '// &
+                                'SLIDING (the pairing of the undeformed state, kept), or TYPE=SURFACE TO '// &
+                                'SURFACE; vemcontact does not combine friction with finite sliding', err_input)
+            cycle
+         end if
+         slope(p) = self%fric%laws(p)%law%stick_slope()
+         if (self%fric%laws(p)%law%exact() .and. self%pairs(p)%nslave > 0) then
+            slope(p) = hard_stiffness*model%controls%stiffness_scale*self%pairs(p)%stiffness/ &
+                       (median_length(model, self%pairs(p)%seg)* &
+                        maxval(self%thick(self%pairs(p)%first + 1:self%pairs(p)%first + self%pairs(p)%nslave), &
+                               mask=self%thick(self%pairs(p)%first + 1:self%pairs(p)%first + self%pairs(p)%nslave) &
+                               > 0.0_wp))
+         end if
+         if (self%fric%laws(p)%law%frictional()) then
+            self%fric%on = .true.
+            self%fric%exact = self%fric%exact .or. self%fric%laws(p)%law%exact()
+         end if
+      end do
+      do i = 1, self%n
+         if (self%fric%laws(self%pair(i))%law%frictional()) &
+            self%fric%kt(i) = slope(self%pair(i))*self%length(i)*self%thick(i)
+      end do
+   end subroutine init_friction
 
    !> Median length of the segments seg(:, k) = (a, b).
    function median_length(model, seg) result(h)
@@ -578,8 +638,145 @@ contains
          call add_element_matrix(a, nodes_of(self, i), &
                                  scale*contact_stiffness(self%xi(i), self%normal(:, i), self%k(i), -1.0_wp), ok)
          if (.not. ok) return
+         ! a sticking entry: its tangential spring (the same rank-one form along t)
+         if (self%fric%state(i) == tangent_stick) then
+            call add_element_matrix(a, nodes_of(self, i), scale*contact_stiffness(self%xi(i), &
+                                    tangent_of(self%normal(:, i)), self%fric%kt(i), -1.0_wp), ok)
+            if (.not. ok) return
+         end if
       end do
    end subroutine add_stiffness
+
+   !> The unit tangent t = (-n_y, n_x) of the master at an entry with normal n: the
+   !> direction of the master segment a -> b, along which CSLIP and CSHEAR count.
+   pure function tangent_of(normal) result(t)
+      real(wp), intent(in) :: normal(2)
+      real(wp) :: t(2)
+      t = [-normal(2), normal(1)]
+   end function tangent_of
+
+   !> The tangential force of entry i in the frozen system at u: a sticking entry's
+   !> spring, lambda + kt (s(u) - anchor); a slipping entry's force of the last update
+   !> followed linearly by its normal force, T + dT/dN (N(u) - N) with
+   !> N(u) = lambda - k g(u) the frozen spring's.
+   pure real(wp) function frozen_tangential(self, i, u) result(tf)
+      type(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      real(wp), intent(in) :: u(:)
+      select case (self%fric%state(i))
+      case (tangent_stick)
+         tf = self%fric%lambda(i) + self%fric%kt(i)*(entry_slip(self, i, u) - self%fric%anchor(i))
+      case (tangent_slip)
+         tf = self%fric%force(i) + self%fric%dnormal(i)* &
+              (self%lambda(i) - self%k(i)*frozen_gap(self, i, u) - self%fric%normal(i))
+      case default
+         tf = 0.0_wp
+      end select
+   end function frozen_tangential
+
+   !> Whether some slipping entry's force follows its normal force (dT/dN /= 0): the
+   !> frozen system then has the unsymmetric part that tangent_times applies and the
+   !> symmetric factor lacks.
+   pure logical function has_coupling(self)
+      class(contact_state_t), intent(in) :: self
+      has_coupling = .false.
+      if (.not. self%fric%on) return
+      has_coupling = any(self%active .and. self%fric%state == tangent_slip .and. abs(self%fric%dnormal) > 0.0_wp)
+   end function has_coupling
+
+   !> Relative tangential displacement s = t.A(xi) u of entry i (contact_slip).
+   pure real(wp) function entry_slip(self, i, u) result(sl)
+      type(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      real(wp), intent(in) :: u(:)
+      integer(ip) :: nodes(3)
+      nodes = nodes_of(self, i)
+      sl = contact_slip(self%xi(i), self%normal(:, i), [u(2*nodes(1) - 1:2*nodes(1)), &
+                                                         u(2*nodes(2) - 1:2*nodes(2)), u(2*nodes(3) - 1:2*nodes(3))])
+   end function entry_slip
+
+   !> The return mapping of every entry's tangential law at u (after update_active):
+   !> stick/slip states and forces for the next solve; nchanged counts the
+   !> frictional entries whose state changed.
+   subroutine update_friction(self, u, nchanged, closing_slips)
+      class(contact_state_t), intent(inout) :: self
+      real(wp), intent(in) :: u(:)
+      integer, intent(out) :: nchanged
+      !> entries that close slip in the next solve (friction_state_t%update): within the
+      !> iteration, not at its start
+      logical, intent(in) :: closing_slips
+      real(wp), allocatable :: sl(:), nf(:)
+      integer :: i
+      nchanged = 0
+      if (.not. self%fric%on) return
+      allocate (sl(self%n), nf(self%n), source=0.0_wp)
+      do i = 1, self%n
+         if (self%iseg(i) == 0) cycle
+         sl(i) = entry_slip(self, i, u)
+         nf(i) = self%normal_force(i)
+      end do
+      call self%fric%update(self%pair, sl, nf, self%active .and. self%iseg > 0, self%length*self%thick, nchanged, &
+                            closing_slips)
+   end subroutine update_friction
+
+   !> Uzawa update of the exact-stick entries (friction_state_t%augment): the largest
+   !> change of a tangential force beyond `noise`, relative to the largest contact
+   !> force, and the largest elastic slip relative to the tributary length, from
+   !> before the update.
+   subroutine augment_friction(self, noise, change, elastic_slip)
+      class(contact_state_t), intent(inout) :: self
+      !> force changes within this round-off of the equilibrium count as none
+      real(wp), intent(in) :: noise
+      real(wp), intent(out) :: change, elastic_slip
+      real(wp) :: fmax
+      integer :: i
+      call self%fric%augment(self%pair, self%length, noise, change, elastic_slip)
+      fmax = 0.0_wp
+      do i = 1, self%n
+         if (self%active(i)) fmax = max(fmax, self%normal_force(i), abs(self%fric%force(i)))
+      end do
+      if (fmax > 0.0_wp) change = change/fmax
+   end subroutine augment_friction
+
+   !> The slip history the next increment starts from (friction_state_t%commit).
+   subroutine commit_friction(self)
+      class(contact_state_t), intent(inout) :: self
+      if (self%fric%on) call self%fric%commit(self%pair)
+   end subroutine commit_friction
+
+   !> Whether some pair enforces stick exactly (a multiplier: Uzawa updates).
+   pure logical function has_exact_friction(self)
+      class(contact_state_t), intent(in) :: self
+      has_exact_friction = self%fric%on .and. self%fric%exact
+   end function has_exact_friction
+
+   !> The tangential terms of the line search energy along d from u0 (line_search_step):
+   !> a = d.f_t(u0) with the frozen tangential forces, b = d.K_t d with the sticking
+   !> entries' springs.
+   subroutine tangential_line_terms(self, u0, d, a, b)
+      class(contact_state_t), intent(in) :: self
+      real(wp), intent(in) :: u0(:), d(:)
+      real(wp), intent(out) :: a, b
+      real(wp) :: ds
+      integer :: i
+      a = 0.0_wp
+      b = 0.0_wp
+      if (.not. self%fric%on) return
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         if (self%fric%state(i) /= tangent_stick .and. self%fric%state(i) /= tangent_slip) cycle
+         ds = entry_slip(self, i, d)
+         a = a + frozen_tangential(self, i, u0)*ds
+         if (self%fric%state(i) == tangent_stick) b = b + self%fric%kt(i)*ds*ds
+      end do
+   end subroutine tangential_line_terms
+
+   !> The number of active entries in tangential state `state` (tangent_stick, tangent_slip).
+   pure integer function count_state(self, state) result(m)
+      class(contact_state_t), intent(in) :: self
+      integer, intent(in) :: state
+      m = count(self%active .and. self%fric%state == state)
+   end function count_state
 
    !> Right-hand side of the active springs, (lambda - k g0) A^T n: with the pairing
    !> frozen, (K + K_c) u = f_ext + sum (lambda - k g0) A^T n is the equilibrium.
@@ -591,6 +788,18 @@ contains
          if (.not. self%active(i)) cycle
          call scatter(f, nodes_of(self, i), (self%lambda(i) - self%k(i)*self%gap0(i))* &
                       matmul(self%normal(:, i), relative_map(self%xi(i))))
+         ! the tangential force's part that does not depend on u: lambda - kt anchor of
+         ! a sticking entry, the frozen force of a slipping one (opposite sign: it
+         ! enters as K u + f_c = f_ext with f_c = T A^T t)
+         select case (self%fric%state(i))
+         case (tangent_stick)
+            call scatter(f, nodes_of(self, i), -(self%fric%lambda(i) - self%fric%kt(i)*self%fric%anchor(i))* &
+                         matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i))))
+         case (tangent_slip)
+            call scatter(f, nodes_of(self, i), -(self%fric%force(i) + self%fric%dnormal(i)* &
+                                                 (self%lambda(i) - self%k(i)*self%gap0(i) - self%fric%normal(i)))* &
+                         matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i))))
+         end select
       end do
    end subroutine add_rhs
 
@@ -603,7 +812,8 @@ contains
       do i = 1, self%n
          if (.not. self%active(i)) cycle
          call scatter(f, nodes_of(self, i), -self%normal_force(i)* &
-                      matmul(self%normal(:, i), relative_map(self%xi(i))))
+                      matmul(self%normal(:, i), relative_map(self%xi(i))) + &
+                      self%fric%force(i)*matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i))))
       end do
    end subroutine forces
 
@@ -620,20 +830,23 @@ contains
       do i = 1, self%n
          if (.not. self%active(i)) cycle
          call scatter(f, nodes_of(self, i), (self%k(i)*frozen_gap(self, i, u) - self%lambda(i))* &
-                      matmul(self%normal(:, i), relative_map(self%xi(i))))
+                      matmul(self%normal(:, i), relative_map(self%xi(i))) + &
+                      frozen_tangential(self, i, u)*matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i))))
       end do
    end subroutine linear_forces
 
    !> jv = jv + K_c v with the contact tangent of the active entries at the current
-   !> pairing: k A^T n n^T A (the matrix the factor holds) and, when `sliding`, the
-   !> part the motion of the projection adds for finite sliding (sliding_tangent;
-   !> zero for the fixed pairings), which is not symmetric.
+   !> pairing: k A^T n n^T A and the sticking entries' kt A^T t t^T A (the matrix the
+   !> factor holds), the slipping entries' -dT/dN k A^T t n^T A (their force follows
+   !> the normal force: not symmetric) and, when `sliding`, the part the motion of the
+   !> projection adds for finite sliding (sliding_tangent; zero for the fixed
+   !> pairings), which is not symmetric either.
    subroutine tangent_times(self, v, jv, sliding)
       class(contact_state_t), intent(in) :: self
       real(wp), intent(in) :: v(:)
       real(wp), intent(inout) :: jv(:)
       logical, intent(in) :: sliding
-      real(wp) :: ve(6), an(6), kc(6, 6)
+      real(wp) :: ve(6), an(6), at(6), kc(6, 6)
       integer(ip) :: nodes(3)
       integer :: i, j
       do i = 1, self%n
@@ -647,6 +860,14 @@ contains
          if (sliding) kc = sliding_tangent(self%xi(i), self%normal(:, i), self%k(i), self%normal_force(i), &
                                            self%slide_c(i), self%slide_w(:, i))
          call scatter(jv, nodes, self%k(i)*an*dot_product(an, ve) + matmul(kc, ve))
+         if (self%fric%state(i) == tangent_stick) then
+            at = matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i)))
+            call scatter(jv, nodes, self%fric%kt(i)*at*dot_product(at, ve))
+         else if (self%fric%state(i) == tangent_slip) then
+            ! the slipping force's share of the normal force: dT/dN (-k n.A v) along t
+            at = matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i)))
+            call scatter(jv, nodes, -self%fric%dnormal(i)*self%k(i)*dot_product(an, ve)*at)
+         end if
       end do
    end subroutine tangent_times
 
@@ -693,14 +914,21 @@ contains
       if (.not. allocated(self%balanced)) allocate (self%balanced(self%n))
       do i = 1, self%n
          self%balanced(i) = self%normal_force(i)
+         self%fric%balanced(i) = -self%fric%force(i)
          if (.not. self%active(i)) cycle
          s = self%node(i)
+         if (uses(s) /= 1) cycle
          ! a fixed dof's residual holds its reaction: usable only across the normal
-         if (uses(s) /= 1 .or. (fixed(2*s - 1) .and. abs(self%normal(1, i)) > 0.0_wp) .or. &
-             (fixed(2*s) .and. abs(self%normal(2, i)) > 0.0_wp)) cycle
-         ! the force on the node is N n, with |n| < 1 at a kink of a SURFACE TO SURFACE master
-         self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))/ &
-                            dot_product(self%normal(:, i), self%normal(:, i))
+         ! (the tangent) when the fixed dofs have no component along it; the force on the
+         ! node is N n + T t, with |n| = |t| < 1 at a kink of a SURFACE TO SURFACE master
+         if (.not. ((fixed(2*s - 1) .and. abs(self%normal(1, i)) > 0.0_wp) .or. &
+                    (fixed(2*s) .and. abs(self%normal(2, i)) > 0.0_wp))) &
+            self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))/ &
+                               dot_product(self%normal(:, i), self%normal(:, i))
+         if (.not. ((fixed(2*s - 1) .and. abs(self%normal(2, i)) > 0.0_wp) .or. &
+                    (fixed(2*s) .and. abs(self%normal(1, i)) > 0.0_wp))) &
+            self%fric%balanced(i) = dot_product(tangent_of(self%normal(:, i)), r(2*s - 1:2*s))/ &
+                                    dot_product(self%normal(:, i), self%normal(:, i))
       end do
    end subroutine set_balanced
 
@@ -901,19 +1129,25 @@ contains
       type(spring_t), allocatable :: s(:)
       integer :: i, m
       integer(ip) :: nodes(3)
-      allocate (s(count(self%active)))
+      allocate (s(count(self%active) + self%count_state(tangent_stick)))
       m = 0
       do i = 1, self%n
          if (.not. self%active(i)) cycle
          m = m + 1
          nodes = nodes_of(self, i)
          s(m) = spring_t(model%x(:, nodes(1)), self%normal(:, i), part(nodes(1)), part(nodes(2)))
+         ! a sticking entry holds along the tangent too
+         if (self%fric%state(i) == tangent_stick) then
+            m = m + 1
+            s(m) = spring_t(model%x(:, nodes(1)), tangent_of(self%normal(:, i)), part(nodes(1)), part(nodes(2)))
+         end if
       end do
    end function springs
 
    !> Results of every slave node: COPEN = gap, CPRESS = the balanced normal force
    !> (set_balanced; the spring's force before it is set) per tributary length and
-   !> thickness, STATUS (2: slid off), CSLIP =
+   !> thickness, CSHEAR = the balanced tangential force along t = (-n_y, n_x) per
+   !> tributary length and thickness, STATUS (2: slid off, 3 stick, 4 slip), CSLIP =
    !> t.(u_s - u_xi) in the displacements `u` with the unit tangent t of the paired
    !> segment (contact_slip); a node without a segment gets CSLIP = 0.
    function table(self, model, u) result(tab)
@@ -930,11 +1164,17 @@ contains
       tab%x = model%x(:, self%node)
       tab%pair = self%pair
       allocate (tab%copen(self%n), tab%cpress(self%n), tab%cslip(self%n), tab%status(self%n))
+      allocate (tab%cshear(self%n), source=0.0_wp)
       tab%cnarea = self%length*self%thick
       if (allocated(self%cfluidp)) tab%cfluidp = self%cfluidp
       do i = 1, self%n
          tab%status(i) = merge(1, 0, self%active(i))
+         if (self%active(i) .and. self%fric%state(i) == tangent_stick) tab%status(i) = 3
+         if (self%active(i) .and. self%fric%state(i) == tangent_slip) tab%status(i) = 4
          if (self%slid_off(i)) tab%status(i) = 2
+         ! the shear traction on the slave along the master's tangent t (the force the
+         ! solution balances, set_balanced), as CPRESS is the normal one
+         if (self%active(i)) tab%cshear(i) = self%fric%balanced(i)/(self%length(i)*self%thick(i))
          if (self%iseg(i) == 0) then
             ! no master segment within the search radius: the gap is at least the radius
             tab%copen(i) = self%pairs(self%pair(i))%radius

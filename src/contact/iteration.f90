@@ -19,7 +19,7 @@ module vemcontact_contact_iteration
    use vemcontact_contact_rules, only: matrix_key_t, key_of, same_key, line_search_step, needs_line_search, &
                                        hold_nodes, is_cycle, conditioning_verdict, &
                                        conditioning_hint, residual_norm, cond_ok, cond_warn, &
-                                       near_key, pairing_drift, &
+                                       near_key, pairing_drift, stick_flips, max_stick_flips, &
                                        cond_stop, cond_stop_penalty, nonconvergence_hint, multiplier_cg_limit
    use vemcontact_linalg_gmres, only: linear_operator_t, gmres, gmres_result_t
    use vemcontact_linalg_norms, only: safe_norm2
@@ -40,6 +40,11 @@ module vemcontact_contact_iteration
    integer, parameter :: gmres_restart = 10, gmres_maxit = 30
    !> The reduction of the residual a solve aims at (krylov_solve)
    real(wp), parameter :: gmres_reduction = 1.0e-6_wp
+   !> ... and with slipping friction: the solve then is the frozen system itself (not
+   !> a Newton step on the pairing), so it is solved to its round-off floor, as the
+   !> direct solve's refinement does (at 1e-6 the slip patch test stopped at 1e-7 of
+   !> the stresses, within the residual tolerance)
+   real(wp), parameter :: gmres_reduction_friction = 1.0e-14_wp
    !> ... and a product by the compliance with finite sliding (compliance_apply): the
    !> stiff modes that the multiplier step resolves are 1e-3 to 1e-6 of the soft ones.
    !> On the soft curved master of docs/contact-robustness.md 1e-6 cost two more
@@ -51,6 +56,7 @@ module vemcontact_contact_iteration
       integer :: iteration = 0
       integer :: active = 0              !< closed slave entries after the iteration
       integer :: changed = 0             !< entries whose state changed (holds included)
+      integer :: slip_changes = 0        !< frictional entries whose stick/slip state changed
       real(wp) :: residual = 0.0_wp      !< relative residual (residual_norm)
       real(wp) :: penetration = 0.0_wp   !< largest overclosure
       real(wp) :: pressure = 0.0_wp      !< largest contact pressure
@@ -162,6 +168,28 @@ module vemcontact_contact_iteration
       procedure :: precondition => tangent_precondition
    end type contact_tangent_t
 
+   !> What the stages of one solve_contact share: the counters, the history of the
+   !> active sets and gaps (for the cycle test), the work vectors and the tangent.
+   type :: iteration_state_t
+      integer :: it = 0, maxit = 0
+      integer :: nchanged = 0             !< entries whose state changed in the last update
+      integer :: nslip = 0                !< entries whose stick/slip state changed in it
+      real(wp) :: kmax = 0.0_wp           !< largest elastic diagonal entry
+      real(wp) :: rel = 0.0_wp            !< relative residual of the last iteration
+      real(wp) :: step = 1.0_wp           !< line search step of the last solve
+      real(wp) :: rc_min = 1.0_wp         !< smallest reciprocal condition estimate so far
+      real(wp) :: t_iter = 0.0_wp, t_fact = 0.0_wp, t_srch = 0.0_wp
+      logical :: warned = .false.         !< the ill-conditioning warning was given
+      logical :: settled = .false.        !< the last update changed no entry
+      logical :: rebuilt = .false.        !< the last matrix needed a new pattern
+      logical, allocatable :: history(:, :), held(:)
+      real(wp), allocatable :: gaps(:, :)
+      integer(ip), allocatable :: iseg_start(:)
+      !> right-hand side, K u, contact forces, residual, start of the solve
+      real(wp), allocatable :: f(:), ku(:), fc(:), r(:), u0(:)
+      type(contact_tangent_t) :: op
+   end type iteration_state_t
+
 contains
 
    subroutine tangent_apply(self, x, y)
@@ -187,6 +215,10 @@ contains
 
    !> Solve for the displacements u of a load state with contact: u holds the
    !> previous state on entry (the pairing starts from it) and the new one on exit.
+   !> Each iteration runs the stages in turn: the solve with the contact frozen
+   !> (solve_frozen), the new pairing and active set (update_contact), the residual
+   !> and its record (record_iteration), the multiplier updates and the convergence
+   !> test (has_converged), and the cycle test (check_cycle).
    subroutine solve_contact(sys, model, fixed, prescribed, fext, u, contact, error, log)
       class(contact_system_t), intent(inout), target :: sys
       type(model_t), intent(in) :: model
@@ -196,23 +228,63 @@ contains
       type(contact_state_t), intent(inout), target :: contact
       type(error_t), allocatable, intent(out) :: error
       type(logger_t), intent(inout), optional :: log
-      logical, allocatable :: history(:, :), hold(:), held(:)
-      integer(ip), allocatable :: iseg_start(:)
-      real(wp), allocatable :: f(:), ku(:), fc(:), r(:), u0(:), gaps(:, :), gfrozen(:), noise(:), dlam(:)
-      real(wp) :: t0, rel, kmax, t_iter, t_fact, t_srch, step, rc_min, overclosure, change, rc, t0s
-      logical :: warned, same_matrix, same_pattern, solved, rebuilt, converged, settled
-      type(contact_tangent_t) :: op
-      integer :: it, nchanged, maxit, j
+      type(iteration_state_t) :: s
       character(len=160) :: buf
-      type(iteration_record_t) :: rec
+      integer :: it, sig
+      logical :: converged
 
-      allocate (f(size(u)), ku(size(u)), fc(size(u)), r(size(u)))
-      maxit = model%controls%max_iterations
-      warned = .false.
-      kmax = sys%largest_elastic_diagonal()
-      allocate (history(contact%n, 0:maxit), gaps(contact%n, 0:maxit), gfrozen(contact%n))
-      allocate (held(contact%n), source=.false.)
-      allocate (noise(contact%n), dlam(contact%n))
+      call start_iteration(s, sys, model, fixed, u, contact, error, log)
+      if (allocated(error)) return
+      do it = 1, s%maxit
+         ! a safe point to stop at on SIGINT/SIGTERM, the same on every process
+         sig = agreed_stop_signal()
+         if (sig > 0) then
+            write (buf, '(a,i0)') 'before contact iteration ', it
+            call interrupt_error(sig, trim(buf), error)
+            return
+         end if
+         s%it = it
+         sys%iterations = it
+         s%t_iter = wall_time()
+         call solve_frozen(s, sys, model, fixed, prescribed, fext, u, contact, error, log)
+         if (allocated(error)) return
+         call update_contact(s, sys, model, u, contact, error)
+         if (allocated(error)) return
+         call record_iteration(s, sys, fixed, fext, u, contact, log)
+         converged = has_converged(s, sys, model, fixed, u, contact, error)
+         if (allocated(error)) return
+         if (converged) then
+            call contact%commit_friction()
+            call contact%set_balanced(model, s%ku - fext, fixed)
+            call report_slid_off(s, model, contact, log)
+            return
+         end if
+         call check_cycle(s, u, contact, error)
+         if (allocated(error)) return
+      end do
+      write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations did not converge in ', s%maxit, &
+         ' iterations (relative residual ', s%rel, ')'
+      call fatal_error(error, trim(buf)//nonconvergence_hint(contact%has_finite_sliding(), contact%has_hard(), &
+                                                             contact%penalty_ratio()), err_solver)
+   end subroutine solve_contact
+
+   !> The iteration's start: counters and work arrays, and the pairing and active set
+   !> of the state left by the previous step (or the undeformed one).
+   subroutine start_iteration(s, sys, model, fixed, u, contact, error, log)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout), target :: sys
+      type(model_t), intent(in) :: model
+      logical, intent(in), target :: fixed(:)
+      real(wp), intent(in) :: u(:)
+      type(contact_state_t), intent(inout), target :: contact
+      type(error_t), allocatable, intent(out) :: error
+      type(logger_t), intent(inout), optional :: log
+      real(wp) :: t0
+      allocate (s%f(size(u)), s%ku(size(u)), s%fc(size(u)), s%r(size(u)))
+      s%maxit = model%controls%max_iterations
+      s%kmax = sys%largest_elastic_diagonal()
+      allocate (s%history(contact%n, 0:s%maxit), s%gaps(contact%n, 0:s%maxit))
+      allocate (s%held(contact%n), source=.false.)
       if (allocated(sys%records)) deallocate (sys%records)
       allocate (sys%records(0))
       sys%iterations = 0
@@ -220,312 +292,430 @@ contains
       sys%refactorized = .false.
       sys%t_factorize = 0
       sys%t_solve = 0
-      rc_min = 1.0_wp
-      settled = .false.
-      op%sys => sys
-      op%contact => contact
-      op%fixed => fixed
+      s%op%sys => sys
+      s%op%contact => contact
+      s%op%fixed => fixed
       call contact%start_state()
-      ! start from the state left by the previous step (or the undeformed one)
       t0 = wall_time()
       call contact%project(model, u, error)
       if (allocated(error)) return
-      call contact%update_active(nchanged)
+      call contact%update_active(s%nchanged)
+      call contact%update_friction(u, s%nslip, .false.)
       sys%t_search = wall_time() - t0
-      iseg_start = contact%iseg
-      history(:, 0) = contact%active
-      gaps(:, 0) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
+      s%iseg_start = contact%iseg
+      s%history(:, 0) = contact%active
+      s%gaps(:, 0) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
+      ! with friction, a last column: the entries that changed between stick and slip
       if (present(log)) call log%say('  iter  active  changed     residual  max penetration  max pressure'// &
-                                     '    time [s]  factorize [s]  search [s]    step')
-      do it = 1, maxit
-         ! a safe point to stop at on SIGINT/SIGTERM, the same on every process
-         j = agreed_stop_signal()
-         if (j > 0) then
-            write (buf, '(a,i0)') 'before contact iteration ', it
-            call interrupt_error(j, trim(buf), error)
-            return
-         end if
-         sys%iterations = it
-         t_iter = wall_time()
-         call sys%contact_matrix(model, contact, u, fixed, prescribed, fext, f, rebuilt, error)
-         if (allocated(error)) return
-         if (rebuilt .and. present(log)) call log%say('        (contact pairs moved: matrix pattern rebuilt)')
-         ! the start of the step, with this state's prescribed values
-         u0 = merge(prescribed, u, fixed)
-         ! Newton on the pairing once the active set holds: the tangent carries the
-         ! part of finite sliding (sliding_tangent), which the factor lacks: GMRES with
-         ! the factor as preconditioner solves with it
-         op%sliding = settled .and. contact%has_sliding()
-         ! the matrix of the current factor: solve again without factorizing; a
-         ! matrix that differs from it only by a small move of the pairing: the old
-         ! factor as the preconditioner
-         same_pattern = sys%factored .and. .not. rebuilt
-         if (same_pattern) same_pattern = .not. any(fixed .neqv. sys%factored_fixed)
-         same_matrix = same_pattern
-         if (same_matrix) same_matrix = same_key(sys%factored_key, contact)
-         solved = .false.
-         if (same_pattern .and. .not. same_matrix) then
-            if (near_key(sys%factored_key, contact, pairing_drift)) then
-               call krylov_solve(u, solved)
-               if (allocated(error)) return
-            end if
-         end if
-         t_fact = 0.0_wp
-         if (.not. (same_matrix .or. solved)) then
-            t0 = wall_time()
-            call factorize()
-            if (allocated(error)) return
-            t_fact = wall_time() - t0
-            sys%t_factorize = sys%t_factorize + t_fact
-         end if
-         if (.not. solved .and. op%sliding) then
-            call krylov_solve(u, solved)
-            if (allocated(error)) return
-         end if
-         if (.not. solved) then
-            ! the frozen-pairing step with the factor of its own matrix (also where the
-            ! sliding part was too strong for it: said in the log)
-            if (op%sliding .and. present(log)) call log%say('        (Newton step on the pairing '// &
-               'replaced by the frozen-pairing step: GMRES did not converge with the factor)')
-            op%sliding = .false.
-            call direct_solve(u)
-            if (allocated(error)) return
-         end if
-         if (.not. all(abs(u) <= huge(1.0_wp))) then
-            call fatal_error(error, 'error: the solution has NaN or infinite values: the model is '// &
-                             'numerically singular', err_solver)
-            return
-         end if
-         ! a frozen-pairing solve minimizes its penalty energy with the current
-         ! springs: cut it when it overshoots into new contact
-         step = 1.0_wp
-         if (.not. op%sliding) step = energy_step(u0, u)
-         if (step < 1.0_wp) u = u0 + step*(u - u0)
+                                     '    time [s]  factorize [s]  search [s]    step'// &
+                                     merge('  stick/slip', '            ', contact%fric%on))
+   end subroutine start_iteration
 
-         ! new pairing and active set (closed nodes opened by the re-pairing alone
-         ! held, hold_nodes), and the residual of the equilibrium with them
-         t0 = wall_time()
-         call contact%frozen_gaps(u, gfrozen)
-         call contact%project(model, u, error)
-         if (allocated(error)) return
-         hold = hold_nodes(contact%active, gfrozen, contact%gap, held)
-         call contact%update_active(nchanged, hold)
-         held = hold .and. contact%active
-         settled = nchanged == 0
-         t_srch = wall_time() - t0
-         sys%t_search = sys%t_search + t_srch
-         call sys%elastic_times(u, ku)
-         fc = 0.0_wp
-         call contact%forces(fc)
-         r = fext - ku - fc
-         where (fixed) r = 0.0_wp
-         rel = residual_norm(r, u, merge(0.0_wp, fext, fixed), fc, kmax, &
-                             merge(maxval(contact%k, mask=contact%active, dim=1), 0.0_wp, any(contact%active)))
-         rec = iteration_record_t(it, count(contact%active), nchanged, rel, contact%max_penetration(), &
-                                  contact%max_pressure(), step, t_fact > 0.0_wp, rebuilt, wall_time() - t_iter)
-         sys%records = [sys%records, rec]
-         write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4,2x,f10.6,2x,f6.4)') it, &
-            rec%active, nchanged, rel, rec%penetration, rec%pressure, rec%time, t_fact, t_srch, step
-         if (present(log)) call log%say(trim(buf))
-         history(:, it) = contact%active
-         gaps(:, it) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
-         if (nchanged == 0 .and. contact%has_hard()) then
-            ! HARD: the augmented Lagrangian's multiplier update (multiplier_step), at
-            ! every iteration that kept the active set (the pairing of finite sliding
-            ! settles meanwhile, at the same time); converged once the solve left no
-            ! overclosure beyond the tolerance and the update changed no force by more
-            ! than the residual tolerance (the pressures' accuracy).  The gaps' round-off
-            ! is excluded (gap_noise): a few ulps of the coordinates (the reference
-            ! gaps) and of the displacements, and the forward error of the solve, from
-            ! the elastic forces' round-off: the residual left, at most eps max K_ii
-            ! max|u|, with a margin of 128 (at contrast 1e6 the gaps settled at 0.8 of
-            ! 16 times it; docs/contact-robustness.md).  On the dam (coordinates 25 m, K
-            ! = 4e13 Pa/m) the gaps' round-off is worth 1e-6 of the forces, which the
-            ! updates only stir.
-            ! Where the pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE) the matrix
-            ! then holds and only the right-hand side changes.
-            noise = contact%gap_noise(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
-                                      16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), &
-                                      128.0_wp*min(maxval(abs(r)), epsilon(1.0_wp)*kmax*maxval(abs(u))))
-            call multiplier_step(sys, contact, fixed, noise, dlam, error)
+   !> One solve with the contact frozen at the current pairing and active set: the
+   !> matrix, then the cheapest solve that holds (the current factor as it is; the
+   !> factor of a nearby pairing, or of this one for the Newton step on the pairing,
+   !> as GMRES's preconditioner; a new factorization), then the line search.
+   subroutine solve_frozen(s, sys, model, fixed, prescribed, fext, u, contact, error, log)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout) :: sys
+      type(model_t), intent(in) :: model
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: prescribed(:), fext(:)
+      real(wp), intent(inout) :: u(:)
+      type(contact_state_t), intent(inout) :: contact
+      type(error_t), allocatable, intent(out) :: error
+      type(logger_t), intent(inout), optional :: log
+      logical :: same_matrix, same_pattern, solved, coupled
+      real(wp) :: t0
+      call sys%contact_matrix(model, contact, u, fixed, prescribed, fext, s%f, s%rebuilt, error)
+      if (allocated(error)) return
+      if (s%rebuilt .and. present(log)) call log%say('        (contact pairs moved: matrix pattern rebuilt)')
+      ! the start of the step, with this state's prescribed values
+      s%u0 = merge(prescribed, u, fixed)
+      ! Newton on the pairing once the active set holds: the tangent carries the
+      ! part of finite sliding (sliding_tangent), which the factor lacks: GMRES with
+      ! the factor as preconditioner solves with it
+      s%op%sliding = s%settled .and. contact%has_sliding()
+      ! the matrix of the current factor: solve again without factorizing; a
+      ! matrix that differs from it only by a small move of the pairing: the old
+      ! factor as the preconditioner
+      same_pattern = sys%factored .and. .not. s%rebuilt
+      if (same_pattern) same_pattern = .not. any(fixed .neqv. sys%factored_fixed)
+      same_matrix = same_pattern
+      if (same_matrix) same_matrix = same_key(sys%factored_key, contact)
+      solved = .false.
+      if (same_pattern .and. .not. same_matrix) then
+         ! a small move of the pairing, or a few stick/slip changes alone
+         if (near_key(sys%factored_key, contact, pairing_drift) .or. &
+             flips_within(stick_flips(sys%factored_key, contact), max_stick_flips)) then
+            call krylov_solve(s, sys, fixed, fext, u, contact, solved, error)
             if (allocated(error)) return
-            call contact%augment(noise, dlam, overclosure, change)
-            converged = rel <= model%controls%residual_tol .and. &
-                        overclosure <= model%controls%overclosure_tol .and. change <= model%controls%residual_tol
-         else
-            converged = nchanged == 0 .and. rel <= model%controls%residual_tol
          end if
-         if (converged) then
-            call contact%set_balanced(model, ku - fext, fixed)
-            call report_slid_off()
+      end if
+      s%t_fact = 0.0_wp
+      if (.not. (same_matrix .or. solved)) then
+         t0 = wall_time()
+         call factorize(s, sys, fixed, contact, error, log)
+         if (allocated(error)) return
+         s%t_fact = wall_time() - t0
+         sys%t_factorize = sys%t_factorize + s%t_fact
+      end if
+      ! the unsymmetric parts the factor lacks (the sliding of the pairing, slipping
+      ! friction whose force follows the normal force): GMRES with the factor
+      coupled = contact%has_coupling()
+      if (.not. solved .and. (s%op%sliding .or. coupled)) then
+         call krylov_solve(s, sys, fixed, fext, u, contact, solved, error)
+         if (allocated(error)) return
+      end if
+      if (.not. solved) then
+         ! the frozen-pairing step with the factor of its own matrix (also where the
+         ! sliding part was too strong for it: said in the log)
+         if (s%op%sliding .and. present(log)) call log%say('        (Newton step on the pairing '// &
+            'replaced by the frozen-pairing step: GMRES did not converge with the factor)')
+         if (coupled .and. present(log)) call log%say('        (friction''s coupling to the normal '// &
+            'force left to the next iteration: GMRES did not converge with the factor)')
+         s%op%sliding = .false.
+         call direct_solve(s, sys, fixed, fext, u, contact, error)
+         if (allocated(error)) return
+      end if
+      if (.not. all(abs(u) <= huge(1.0_wp))) then
+         call fatal_error(error, 'error: the solution has NaN or infinite values: the model is '// &
+                          'numerically singular', err_solver)
+         return
+      end if
+      ! a frozen-pairing solve minimizes its penalty energy with the current
+      ! springs: cut it when it overshoots into new contact
+      s%step = 1.0_wp
+      if (.not. s%op%sliding) s%step = energy_step(s, sys, fixed, fext, u, contact)
+      if (s%step < 1.0_wp) u = s%u0 + s%step*(u - s%u0)
+   end subroutine solve_frozen
+
+   !> The new pairing and active set at u (closed nodes opened by the re-pairing
+   !> alone held, hold_nodes).
+   subroutine update_contact(s, sys, model, u, contact, error)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout) :: sys
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      type(contact_state_t), intent(inout) :: contact
+      type(error_t), allocatable, intent(out) :: error
+      real(wp), allocatable :: gfrozen(:)
+      logical, allocatable :: hold(:)
+      real(wp) :: t0
+      t0 = wall_time()
+      allocate (gfrozen(contact%n))
+      call contact%frozen_gaps(u, gfrozen)
+      call contact%project(model, u, error)
+      if (allocated(error)) return
+      hold = hold_nodes(contact%active, gfrozen, contact%gap, s%held)
+      call contact%update_active(s%nchanged, hold)
+      s%held = hold .and. contact%active
+      call contact%update_friction(u, s%nslip, .true.)
+      s%settled = s%nchanged == 0
+      s%t_srch = wall_time() - t0
+      sys%t_search = sys%t_search + s%t_srch
+   end subroutine update_contact
+
+   !> The residual of the equilibrium at u with the contact forces of the new
+   !> pairing, the iteration's record (sys%records) and its log line.
+   subroutine record_iteration(s, sys, fixed, fext, u, contact, log)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout) :: sys
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: fext(:), u(:)
+      type(contact_state_t), intent(in) :: contact
+      type(logger_t), intent(inout), optional :: log
+      type(iteration_record_t) :: rec
+      character(len=160) :: buf
+      call sys%elastic_times(u, s%ku)
+      s%fc = 0.0_wp
+      call contact%forces(s%fc)
+      s%r = fext - s%ku - s%fc
+      where (fixed) s%r = 0.0_wp
+      s%rel = residual_norm(s%r, u, merge(0.0_wp, fext, fixed), s%fc, s%kmax, closed_stiffness(contact))
+      rec = iteration_record_t(s%it, count(contact%active), s%nchanged, s%nslip, s%rel, contact%max_penetration(), &
+                               contact%max_pressure(), s%step, s%t_fact > 0.0_wp, s%rebuilt, wall_time() - s%t_iter)
+      sys%records = [sys%records, rec]
+      write (buf, '(2x,i4,2x,i6,2x,i7,2x,es11.3,2x,es15.4,2x,es12.4,2x,f10.4,2x,f13.4,2x,f10.6,2x,f6.4)') s%it, &
+         rec%active, s%nchanged, s%rel, rec%penetration, rec%pressure, rec%time, s%t_fact, s%t_srch, s%step
+      if (contact%fric%on) write (buf(len_trim(buf) + 1:), '(2x,i10)') s%nslip
+      if (present(log)) call log%say(trim(buf))
+      s%history(:, s%it) = contact%active
+      s%gaps(:, s%it) = merge(contact%gap, 0.0_wp, contact%iseg > 0)
+   end subroutine record_iteration
+
+   !> Whether the iteration has converged: no entry changed its normal or its
+   !> stick/slip state and the residual is small; for HARD and exact stick, after
+   !> the augmented Lagrangian's Uzawa updates, which must leave no overclosure, no
+   !> elastic slip and no force change beyond the tolerances.
+   logical function has_converged(s, sys, model, fixed, u, contact, error) result(converged)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout), target :: sys
+      type(model_t), intent(in) :: model
+      logical, intent(in), target :: fixed(:)
+      real(wp), intent(in) :: u(:)
+      type(contact_state_t), intent(inout), target :: contact
+      type(error_t), allocatable, intent(out) :: error
+      real(wp) :: overclosure, change, tchange, elastic_slip
+      real(wp), allocatable :: noise(:), dlam(:)
+      converged = .false.
+      if (s%nchanged == 0 .and. (contact%has_hard() .or. contact%has_exact_friction())) then
+         overclosure = 0.0_wp
+         change = 0.0_wp
+         ! exact stick: the tangential counterpart, at the same iterations (the normal
+         ! forces its bounds depend on settle at the same time); a change within a few
+         ! times the residual force left by the solve is its round-off (on the dam, K =
+         ! 1e13 Pa/m, the exact-stick updates settled at 2.5e-5 N of 1e5 N, the size of
+         ! the residual, and would never stop)
+         call contact%augment_friction(4.0_wp*maxval(abs(s%r)), tchange, elastic_slip)
+         if (.not. contact%has_hard()) then
+            converged = s%nslip == 0 .and. s%rel <= model%controls%residual_tol .and. &
+                        elastic_slip <= model%controls%overclosure_tol .and. tchange <= model%controls%residual_tol
             return
          end if
-         if (nchanged > 0) then
-            j = is_cycle(history, gaps, contact%active, gaps(:, it), it, rc_min, maxval(abs(u)))
-            if (j >= 0) then
-               write (buf, '(a,i0,a,i0)') 'error: contact iterations cycle: iteration ', it, &
-                  ' returns to the active set and gaps of iteration ', j
-               call fatal_error(error, trim(buf)//' (the penalty may be too large for the mesh, or a '// &
-                                'slave node sits at the end of a master surface)', err_solver)
-               return
-            end if
+         ! HARD: the augmented Lagrangian's multiplier update (multiplier_step), at
+         ! every iteration that kept the active set (the pairing of finite sliding
+         ! settles meanwhile, at the same time); converged once the solve left no
+         ! overclosure beyond the tolerance and the update changed no force by more
+         ! than the residual tolerance (the pressures' accuracy).  The gaps' round-off
+         ! is excluded (gap_noise): a few ulps of the coordinates (the reference
+         ! gaps) and of the displacements, and the forward error of the solve, from
+         ! the elastic forces' round-off: the residual left, at most eps max K_ii
+         ! max|u|, with a margin of 128 (at contrast 1e6 the gaps settled at 0.8 of
+         ! 16 times it; docs/contact-robustness.md).  On the dam (coordinates 25 m, K
+         ! = 4e13 Pa/m) the gaps' round-off is worth 1e-6 of the forces, which the
+         ! updates only stir.
+         ! Where the pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE) the matrix
+         ! then holds and only the right-hand side changes.
+         allocate (dlam(contact%n))
+         noise = contact%gap_noise(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
+                                   16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), &
+                                   128.0_wp*min(maxval(abs(s%r)), epsilon(1.0_wp)*s%kmax*maxval(abs(u))))
+         call multiplier_step(sys, contact, fixed, noise, dlam, error)
+         if (allocated(error)) return
+         call contact%augment(noise, dlam, overclosure, change)
+         converged = s%nslip == 0 .and. s%rel <= model%controls%residual_tol .and. &
+                     overclosure <= model%controls%overclosure_tol .and. change <= model%controls%residual_tol .and. &
+                     elastic_slip <= model%controls%overclosure_tol .and. tchange <= model%controls%residual_tol
+      else
+         converged = s%nchanged == 0 .and. s%nslip == 0 .and. s%rel <= model%controls%residual_tol
+      end if
+   end function has_converged
+
+   !> 0 < m <= limit: a few stick/slip changes (stick_flips).
+   pure logical function flips_within(m, limit)
+      integer, intent(in) :: m, limit
+      flips_within = m > 0 .and. m <= limit
+   end function flips_within
+
+   !> Stop when the iterates return to the active set and gaps of an earlier
+   !> iteration (is_cycle).
+   subroutine check_cycle(s, u, contact, error)
+      type(iteration_state_t), intent(in) :: s
+      real(wp), intent(in) :: u(:)
+      type(contact_state_t), intent(in) :: contact
+      type(error_t), allocatable, intent(out) :: error
+      character(len=160) :: buf
+      integer :: j
+      if (s%nchanged == 0) return
+      j = is_cycle(s%history, s%gaps, contact%active, s%gaps(:, s%it), s%it, s%rc_min, maxval(abs(u)))
+      if (j < 0) return
+      write (buf, '(a,i0,a,i0)') 'error: contact iterations cycle: iteration ', s%it, &
+         ' returns to the active set and gaps of iteration ', j
+      call fatal_error(error, trim(buf)//' (the penalty may be too large for the mesh, or a '// &
+                       'slave node sits at the end of a master surface)', err_solver)
+   end subroutine check_cycle
+
+   !> The stiffest closed spring (0 when none is closed), for residual_norm.
+   pure real(wp) function closed_stiffness(contact) result(kc)
+      type(contact_state_t), intent(in) :: contact
+      kc = 0.0_wp
+      if (any(contact%active)) kc = maxval(contact%k, mask=contact%active)
+   end function closed_stiffness
+
+   !> u = u0 + dx with the factor of the frozen-pairing matrix itself: a solve and
+   !> one step of iterative refinement, dx = A^-1 r(u0), then x <- x + A^-1 r(x), with
+   !> the residual r = f_ext - K x - f_c(x) from the gaps.  The backward error of
+   !> the factorization is eps times the stiffest spring, which at K h/E = 1e7 left
+   !> 2e-8 in the contact forces; the refined solution carries the round-off of the
+   !> elastic forces (the contact patch test of SURFACE TO SURFACE at K h/E = 1e8:
+   !> 1e-13 with the refinement, 3e-7 without).
+   subroutine direct_solve(s, sys, fixed, fext, x, contact, error)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout) :: sys
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: fext(:)
+      real(wp), intent(inout) :: x(:)
+      type(contact_state_t), intent(in) :: contact
+      type(error_t), allocatable, intent(out) :: error
+      real(wp), allocatable :: dx(:)
+      real(wp) :: t0
+      integer :: pass
+      x = s%u0
+      allocate (dx(size(x)))
+      do pass = 1, 2
+         call frozen_residual(s, sys, fixed, fext, x, contact)
+         dx = 0.0_wp
+         t0 = wall_time()
+         call sys%solve_system(s%r, dx, error)
+         sys%t_solve = sys%t_solve + (wall_time() - t0)
+         if (allocated(error)) return
+         x = x + dx
+      end do
+   end subroutine direct_solve
+
+   !> The residual of the frozen-pairing equilibrium at x, r = f_ext - K x - f_c(x)
+   !> (zero on the fixed dofs; f_c in fc), and its relative size rel_x (residual_norm).
+   subroutine frozen_residual(s, sys, fixed, fext, x, contact, rel_x)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(in) :: sys
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: fext(:), x(:)
+      type(contact_state_t), intent(in) :: contact
+      real(wp), intent(out), optional :: rel_x
+      call sys%elastic_times(x, s%ku)
+      s%fc = 0.0_wp
+      call contact%linear_forces(x, s%fc)
+      s%r = fext - s%ku - s%fc
+      where (fixed) s%r = 0.0_wp
+      if (present(rel_x)) rel_x = residual_norm(s%r, x, merge(0.0_wp, fext, fixed), s%fc, s%kmax, &
+                                                closed_stiffness(contact))
+   end subroutine frozen_residual
+
+   !> x = u0 + dx with J dx = r(u0), the tangent J of `op` (the frozen-pairing
+   !> matrix, plus the sliding part for a Newton step), by GMRES preconditioned
+   !> with the current factor (of this or a nearby pairing), to a millionth of the
+   !> initial residual or its round-off floor.  ok: GMRES converged; otherwise x is
+   !> its last iterate.
+   subroutine krylov_solve(s, sys, fixed, fext, x, contact, ok, error)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout) :: sys
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: fext(:)
+      real(wp), intent(inout) :: x(:)
+      type(contact_state_t), intent(in) :: contact
+      logical, intent(out) :: ok
+      type(error_t), allocatable, intent(out) :: error
+      real(wp), allocatable :: dx(:)
+      type(gmres_result_t) :: res
+      real(wp) :: rel0, tol_abs, floor_abs, t0
+      ok = .false.
+      call frozen_residual(s, sys, fixed, fext, s%u0, contact, rel0)
+      ! a millionth of the initial residual: an inexact Newton step that keeps the
+      ! quadratic rate; a multiplier update of HARD late in the iteration starts
+      ! from a residual near the round-off, and must still be applied in full.
+      ! The floor, 1e3 eps of the residual's scale, is about the round-off of its
+      ! evaluation (floors of 1e-15 to 1e-17 relative were logged): below it GMRES
+      ! goes on only while it still halves the residual
+      tol_abs = gmres_reduction*safe_norm2(s%r)
+      if (contact%has_coupling() .and. .not. s%op%sliding) tol_abs = gmres_reduction_friction*safe_norm2(s%r)
+      floor_abs = 0.0_wp
+      if (rel0 > 0.0_wp) floor_abs = 1.0e3_wp*epsilon(1.0_wp)*safe_norm2(s%r)/rel0
+      allocate (dx(size(s%u0)), source=0.0_wp)
+      t0 = wall_time()
+      call gmres(s%op, s%r, dx, tol_abs, floor_abs, gmres_restart, gmres_maxit, 0.5_wp, res, error)
+      sys%t_solve = sys%t_solve + (wall_time() - t0)
+      if (allocated(error)) return
+      x = s%u0 + dx
+      ok = res%converged
+   end subroutine krylov_solve
+
+   !> Numeric factorization of the current matrix, with its conditioning judged.
+   subroutine factorize(s, sys, fixed, contact, error, log)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout) :: sys
+      logical, intent(in) :: fixed(:)
+      type(contact_state_t), intent(in) :: contact
+      type(error_t), allocatable, intent(out) :: error
+      type(logger_t), intent(inout), optional :: log
+      real(wp) :: rc
+      sys%factored = .false.
+      call sys%numeric_factorize(error)
+      if (allocated(error)) then
+         ! a penalty stiff enough to swamp the elastic stiffness loses positive
+         ! definiteness to round-off: say so in the model's terms when the solver
+         ! found a pivot that was not positive (any other failure, an iterative
+         ! solver's or an internal one, stays as it is)
+         if (any(contact%active) .and. sys%pivot_failed) &
+            error%message = 'error: with the closed contact springs the '// &
+            'stiffness matrix is not positive definite in floating point ('//error%message//')'// &
+            new_line('a')//conditioning_hint(closed_stiffness(contact)/s%kmax)
+         return
+      end if
+      sys%factorizations = sys%factorizations + 1
+      sys%factored = .true.
+      sys%factored_fixed = fixed
+      sys%factored_key = key_of(contact)
+      sys%refactorized = .true.
+      rc = sys%rcond()
+      call judge_conditioning(rc, closed_stiffness(contact)/s%kmax, any(contact%active), s%warned, error, log)
+      if (allocated(error)) return
+      if (rc > 0.0_wp) s%rc_min = min(s%rc_min, rc)
+   end subroutine factorize
+
+   !> The line search along the solve from u0 to u (line_search_step), with the
+   !> gaps frozen and shifted by lambda/k for HARD entries.
+   real(wp) function energy_step(s, sys, fixed, fext, u, contact) result(t)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(in) :: sys
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: fext(:), u(:)
+      type(contact_state_t), intent(in) :: contact
+      real(wp), allocatable :: d(:), kd(:), g0(:), h(:)
+      real(wp) :: ta, tb
+      t = 1.0_wp
+      allocate (g0(contact%n), h(contact%n))
+      call contact%frozen_gaps(s%u0, g0)
+      call contact%frozen_gaps(u, h)
+      where (g0 < huge(1.0_wp) .and. contact%k > 0.0_wp)
+         g0 = g0 - contact%lambda/contact%k
+         h = h - contact%lambda/contact%k
+      end where
+      if (.not. needs_line_search(contact%active, g0, h)) return
+      where (g0 < huge(1.0_wp))
+         h = h - g0
+      elsewhere
+         h = 0.0_wp
+      end where
+      d = merge(0.0_wp, u - s%u0, fixed)
+      allocate (kd(size(d)))
+      call sys%elastic_times(d, kd)
+      call sys%elastic_times(s%u0, s%ku)
+      ! the frozen tangential forces along the step: linear (slip) and quadratic (stick) terms
+      call contact%tangential_line_terms(s%u0, d, ta, tb)
+      t = line_search_step(dot_product(d, s%ku - fext) + ta, dot_product(d, kd) + tb, contact%k, g0, h)
+   end function energy_step
+
+   !> Slave nodes that had a master segment at the start of the step and have none at
+   !> its end slid past the end of an open master surface: they carry no pressure and
+   !> their neighbours the load they would carry; say so, naming them.
+   subroutine report_slid_off(s, model, contact, log)
+      type(iteration_state_t), intent(in) :: s
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(inout) :: contact
+      type(logger_t), intent(inout), optional :: log
+      integer :: i, m
+      character(len=:), allocatable :: list
+      character(len=160) :: buf
+      contact%slid_off = s%iseg_start > 0 .and. contact%iseg == 0
+      if (.not. any(contact%slid_off) .or. .not. present(log)) return
+      list = ''
+      m = 0
+      do i = 1, contact%n
+         if (.not. contact%slid_off(i)) cycle
+         m = m + 1
+         if (m <= 20) then
+            write (buf, '(i0)') model%node_id(contact%node(i))
+            list = list//', '//trim(buf)
          end if
       end do
-      write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations did not converge in ', maxit, &
-         ' iterations (relative residual ', rel, ')'
-      call fatal_error(error, trim(buf)//nonconvergence_hint(contact%has_finite_sliding(), contact%has_hard(), &
-                                                             contact%penalty_ratio()), err_solver)
-   contains
-      !> x = u0 + dx with the factor of the frozen-pairing matrix itself: a solve and
-      !> one step of iterative refinement, dx = A^-1 r(u0), then x <- x + A^-1 r(x), with
-      !> the residual r = f_ext - K x - f_c(x) from the gaps.  The backward error of
-      !> the factorization is eps times the stiffest spring, which at K h/E = 1e7 left
-      !> 2e-8 in the contact forces; the refined solution carries the round-off of the
-      !> elastic forces (the contact patch test of SURFACE TO SURFACE at K h/E = 1e8:
-      !> 1e-13 with the refinement, 3e-7 without).
-      subroutine direct_solve(x)
-         real(wp), intent(inout) :: x(:)
-         real(wp), allocatable :: dx(:)
-         integer :: pass
-         x = u0
-         allocate (dx(size(x)))
-         do pass = 1, 2
-            call frozen_residual(x)
-            dx = 0.0_wp
-            t0s = wall_time()
-            call sys%solve_system(r, dx, error)
-            sys%t_solve = sys%t_solve + (wall_time() - t0s)
-            if (allocated(error)) return
-            x = x + dx
-         end do
-      end subroutine direct_solve
-
-      !> The residual of the frozen-pairing equilibrium at x, r = f_ext - K x - f_c(x)
-      !> (zero on the fixed dofs; f_c in fc), and its relative size rel_x (residual_norm).
-      subroutine frozen_residual(x, rel_x)
-         real(wp), intent(in) :: x(:)
-         real(wp), intent(out), optional :: rel_x
-         call sys%elastic_times(x, ku)
-         fc = 0.0_wp
-         call contact%linear_forces(x, fc)
-         r = fext - ku - fc
-         where (fixed) r = 0.0_wp
-         if (present(rel_x)) rel_x = residual_norm(r, x, merge(0.0_wp, fext, fixed), fc, kmax, &
-                                                   merge(maxval(contact%k, mask=contact%active, dim=1), 0.0_wp, &
-                                                         any(contact%active)))
-      end subroutine frozen_residual
-
-      !> x = u0 + dx with J dx = r(u0), the tangent J of `op` (the frozen-pairing
-      !> matrix, plus the sliding part for a Newton step), by GMRES preconditioned
-      !> with the current factor (of this or a nearby pairing), to a millionth of the
-      !> initial residual or its round-off floor.  ok: GMRES converged; otherwise x is
-      !> its last iterate.
-      subroutine krylov_solve(x, ok)
-         real(wp), intent(inout) :: x(:)
-         logical, intent(out) :: ok
-         real(wp), allocatable :: dx(:)
-         type(gmres_result_t) :: res
-         real(wp) :: rel0, tol_abs, floor_abs
-         ok = .false.
-         call frozen_residual(u0, rel0)
-         ! a millionth of the initial residual: an inexact Newton step that keeps the
-         ! quadratic rate; a multiplier update of HARD late in the iteration starts
-         ! from a residual near the round-off, and must still be applied in full.
-         ! The floor, 1e3 eps of the residual's scale, is about the round-off of its
-         ! evaluation (floors of 1e-15 to 1e-17 relative were logged): below it GMRES
-         ! goes on only while it still halves the residual
-         tol_abs = gmres_reduction*safe_norm2(r)
-         floor_abs = 0.0_wp
-         if (rel0 > 0.0_wp) floor_abs = 1.0e3_wp*epsilon(1.0_wp)*safe_norm2(r)/rel0
-         allocate (dx(size(u0)), source=0.0_wp)
-         t0s = wall_time()
-         call gmres(op, r, dx, tol_abs, floor_abs, gmres_restart, gmres_maxit, 0.5_wp, res, error)
-         sys%t_solve = sys%t_solve + (wall_time() - t0s)
-         if (allocated(error)) return
-         x = u0 + dx
-         ok = res%converged
-      end subroutine krylov_solve
-
-      !> Numeric factorization of the current matrix, with its conditioning judged.
-      subroutine factorize()
-         sys%factored = .false.
-         call sys%numeric_factorize(error)
-         if (allocated(error)) then
-            ! a penalty stiff enough to swamp the elastic stiffness loses positive
-            ! definiteness to round-off: say so in the model's terms when the solver
-            ! found a pivot that was not positive (any other failure, an iterative
-            ! solver's or an internal one, stays as it is)
-            if (any(contact%active) .and. sys%pivot_failed) &
-               error%message = 'error: with the closed contact springs the '// &
-               'stiffness matrix is not positive definite in floating point ('//error%message//')'// &
-               new_line('a')//conditioning_hint(maxval(contact%k, mask=contact%active)/kmax)
-            return
-         end if
-         sys%factorizations = sys%factorizations + 1
-         sys%factored = .true.
-         sys%factored_fixed = fixed
-         sys%factored_key = key_of(contact)
-         sys%refactorized = .true.
-         rc = sys%rcond()
-         call judge_conditioning(rc, merge(maxval(contact%k, mask=contact%active, dim=1)/kmax, 0.0_wp, &
-                                           any(contact%active)), any(contact%active), warned, error, log)
-         if (allocated(error)) return
-         if (rc > 0.0_wp) rc_min = min(rc_min, rc)
-      end subroutine factorize
-
-      !> The line search along the solve from ua to ub (line_search_step), with the
-      !> gaps frozen and shifted by lambda/k for HARD entries.
-      real(wp) function energy_step(ua, ub) result(t)
-         real(wp), intent(in) :: ua(:), ub(:)
-         real(wp), allocatable :: d(:), kd(:), g0(:), h(:)
-         t = 1.0_wp
-         allocate (g0(contact%n), h(contact%n))
-         call contact%frozen_gaps(ua, g0)
-         call contact%frozen_gaps(ub, h)
-         where (g0 < huge(1.0_wp) .and. contact%k > 0.0_wp)
-            g0 = g0 - contact%lambda/contact%k
-            h = h - contact%lambda/contact%k
-         end where
-         if (.not. needs_line_search(contact%active, g0, h)) return
-         where (g0 < huge(1.0_wp))
-            h = h - g0
-         elsewhere
-            h = 0.0_wp
-         end where
-         d = merge(0.0_wp, ub - ua, fixed)
-         allocate (kd(size(d)))
-         call sys%elastic_times(d, kd)
-         call sys%elastic_times(ua, ku)
-         t = line_search_step(dot_product(d, ku - fext), dot_product(d, kd), contact%k, g0, h)
-      end function energy_step
-
-      !> Slave nodes that had a master segment at the start of the step and have none at
-      !> its end slid past the end of the master surface: they carry no pressure and
-      !> their neighbours the load they would carry; say so, naming them.
-      subroutine report_slid_off()
-         integer :: i, m
-         character(len=:), allocatable :: list
-         contact%slid_off = iseg_start > 0 .and. contact%iseg == 0
-         if (.not. any(contact%slid_off) .or. .not. present(log)) return
-         list = ''
-         m = 0
-         do i = 1, contact%n
-            if (.not. contact%slid_off(i)) cycle
-            m = m + 1
-            if (m <= 20) then
-               write (buf, '(i0)') model%node_id(contact%node(i))
-               list = list//', '//trim(buf)
-            end if
-         end do
-         if (m > 20) list = list//', ...'
-         write (buf, '(i0)') m
-         call log%say('  warning: '//trim(buf)//' slave nodes slid past the end of their master surface '// &
-                      'and carry no contact pressure (STATUS 2), their neighbours the load: nodes '//list(3:))
-         call log%say('  = help: extend the master surface beyond the slave''s, or, when the sliding is '// &
-                      'small, use SMALL SLIDING or TYPE=SURFACE TO SURFACE (pairing fixed at the start)')
-      end subroutine report_slid_off
-
-   end subroutine solve_contact
+      if (m > 20) list = list//', ...'
+      write (buf, '(i0)') m
+      call log%say('  warning: '//trim(buf)//' slave nodes slid past the end of their master surface '// &
+                   'and carry no contact pressure (STATUS 2), their neighbours the load: nodes '//list(3:))
+      call log%say('  = help: extend the master surface beyond the slave''s, or, when the sliding is '// &
+                   'small, use SMALL SLIDING or TYPE=SURFACE TO SURFACE (pairing fixed at the start)')
+   end subroutine report_slid_off
 
    !> The multipliers' step dlam of the HARD entries (vemcontact_contact_active_set,
    !> augment) that closes their gaps g with the pairing and active set of the last

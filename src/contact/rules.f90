@@ -15,12 +15,13 @@ module vemcontact_contact_rules
    use vemcontact_kinds, only: wp, ip
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_linalg_norms, only: safe_norm2
+   use vemcontact_contact_friction, only: tangent_stick
    implicit none
    private
 
    public :: line_search_step, needs_line_search, hold_nodes, is_cycle
    public :: conditioning_verdict, conditioning_hint, residual_norm
-   public :: matrix_key_t, key_of, same_key, near_key, nonconvergence_hint
+   public :: matrix_key_t, key_of, same_key, near_key, stick_flips, nonconvergence_hint
 
    !> CHOLMOD's reciprocal condition estimate below which results lose accuracy
    !> (relative errors of about eps/rcond: 1e-7 and worse) and a warning is logged,
@@ -72,10 +73,16 @@ module vemcontact_contact_rules
    !> conditioning_verdict: trust the factor, warn (once), stop
    integer, parameter, public :: cond_ok = 0, cond_warn = 1, cond_stop = 2, cond_stop_penalty = 3
 
+   !> The most stick/slip changes alone for which the factor of the old states still
+   !> serves the new matrix as GMRES's preconditioner (stick_flips): each change is a
+   !> rank-one term, which GMRES resolves in about one iteration (gmres_maxit = 30).
+   integer, parameter, public :: max_stick_flips = 12
+
    !> What the contact part of the matrix depends on: the active set and, for the
-   !> active entries, the pairing and the springs.
+   !> active entries, the pairing, the springs and which entries stick (their
+   !> tangential springs).
    type :: matrix_key_t
-      logical, allocatable :: active(:)
+      logical, allocatable :: active(:), stick(:)
       integer(ip), allocatable :: iseg(:)
       real(wp), allocatable :: xi(:), normal(:, :), k(:)
    end type matrix_key_t
@@ -274,7 +281,16 @@ contains
       key%xi = contact%xi
       key%normal = contact%normal
       key%k = contact%k
+      key%stick = sticking(contact)
    end function key_of
+
+   !> Which entries stick (none before the tangential state exists).
+   pure function sticking(contact) result(st)
+      type(contact_state_t), intent(in) :: contact
+      logical :: st(contact%n)
+      st = .false.
+      if (allocated(contact%fric%state)) st = contact%fric%state == tangent_stick
+   end function sticking
 
    !> Whether the contact part of the matrix is that of `key`: the same active set
    !> and, for the active entries, the same pairing and springs.
@@ -292,6 +308,7 @@ contains
       type(matrix_key_t), intent(in) :: key
       type(contact_state_t), intent(in) :: contact
       real(wp), intent(in) :: drift
+      logical :: st(contact%n)
       integer :: i
       near = allocated(key%active)
       if (.not. near) return
@@ -299,13 +316,36 @@ contains
       if (.not. near) return
       near = all(key%active .eqv. contact%active)
       if (.not. near) return
+      st = sticking(contact)
       do i = 1, contact%n
          if (.not. contact%active(i)) cycle
          near = key%iseg(i) == contact%iseg(i) .and. abs(key%xi(i) - contact%xi(i)) <= drift .and. &
-                identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i)))
+                identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i))) .and. &
+                (key%stick(i) .eqv. st(i))
          if (.not. near) return
       end do
    end function near_key
+
+   !> The number of active entries whose stick state differs from `key`'s when the
+   !> rest of the contact matrix is the same (active set, pairing, springs); -1
+   !> otherwise.  A matrix that differs by a few stick/slip changes alone is solved with
+   !> the old factor as GMRES's preconditioner instead of a new factorization.
+   pure integer function stick_flips(key, contact) result(m)
+      type(matrix_key_t), intent(in) :: key
+      type(contact_state_t), intent(in) :: contact
+      integer :: i
+      m = -1
+      if (.not. allocated(key%active)) return
+      if (size(key%active) /= contact%n) return
+      if (.not. all(key%active .eqv. contact%active)) return
+      do i = 1, contact%n
+         if (.not. contact%active(i)) cycle
+         if (.not. (key%iseg(i) == contact%iseg(i) .and. identical(key%xi(i), contact%xi(i)) .and. &
+                    identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i))))) &
+            return
+      end do
+      m = count(contact%active .and. (key%stick .neqv. sticking(contact)))
+   end function stick_flips
 
    !> a and b are the same number (neither is less or greater).
    elemental logical function identical(a, b)

@@ -15,13 +15,18 @@ module vemcontact_contact_table
       real(wp), allocatable :: copen(:)
       real(wp), allocatable :: cpress(:)
       real(wp), allocatable :: cslip(:)
+      !> the shear traction on the slave node along the master's unit tangent t = (-n_y, n_x)
+      !> (the direction of its segments), the tangential force the solution balances per
+      !> CNAREA; 0 for frictionless pairs
+      real(wp), allocatable :: cshear(:)
       !> CNAREA (Abaqus' name): the slave node's undeformed tributary length times the
       !> thickness, the area CPRESS acts on (sum CPRESS * CNAREA = transmitted force)
       real(wp), allocatable :: cnarea(:)
       !> CFLUIDP: the water pressure in the joint (*UPLIFT), acting on both faces
       !> beside the effective contact pressure CPRESS; unallocated without uplift
       real(wp), allocatable :: cfluidp(:)
-      integer, allocatable :: status(:)       !< 1 closed, 0 open, 2 slid past the end of the master
+      !> 0 open, 1 closed (frictionless), 2 slid past the end of the master, 3 stick, 4 slip
+      integer, allocatable :: status(:)
       integer, allocatable :: pair(:)
       integer(ip), allocatable :: node(:)     !< internal node index (for the driver)
    end type contact_table_t

@@ -1,5 +1,5 @@
 !> Handlers of the contact keywords: *SURFACE, *SURFACE INTERACTION, *SURFACE BEHAVIOR,
-!> *CONTACT PAIR and *CONTACT CONTROLS, and their resolution after the deck is read.
+!> *FRICTION, *CONTACT PAIR and *CONTACT CONTROLS, and their resolution after the deck is read.
 !> Surfaces are resolved when read (their elements, sets and nodes must be defined
 !> before them, as for sets); contact pairs name surfaces and interactions that are
 !> looked up at the end, so that a misspelt name gets a suggestion among all of them.
@@ -23,6 +23,7 @@ module vemcontact_deck_contact
    private
 
    public :: read_surface, read_interaction, read_behavior, drop_behavior, read_contact_pair, read_controls
+   public :: read_friction
    public :: finish_contact, find_surface
 
    character(len=*), parameter :: side_help = 'sides are S1, S2, ...: side Sk runs from node k to node k+1 '// &
@@ -371,6 +372,114 @@ contains
          first = .false.
       end do
    end subroutine read_hard
+
+   !> *FRICTION [, ROUGH] [, COHESION=c] under a *SURFACE INTERACTION; data line
+   !> mu [, stick slope] (CalculiX: Coulomb friction |t_T| <= mu p; the stick slope is
+   !> the tangential traction per unit elastic slip, and without it stick is exact).
+   !> ROUGH (Abaqus): no slip, no data line.  COHESION=c (vemcontact's extension):
+   !> Mohr-Coulomb, |t_T| <= c + mu p while the contact is closed.
+   subroutine read_friction(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(in) :: kw
+      character(len=:), allocatable :: cstr
+      logical :: rough, has_c, ok, ok_mu, ok_s, dup, first
+      real(wp) :: mu, slope, c
+      integer :: stat
+      call before_steps(p, '*FRICTION')
+      if (p%cur_inter == 0) then
+         call err_here(p, '*FRICTION must follow a *SURFACE INTERACTION', &
+                       'put *FRICTION under the *SURFACE INTERACTION, NAME=... it belongs to '// &
+                       '(beside its *SURFACE BEHAVIOR)')
+      end if
+      dup = .false.
+      if (p%cur_inter > 0) then
+         dup = model%interactions(p%cur_inter)%has_friction
+         if (dup) call err_here(p, 'surface interaction '//model%interactions(p%cur_inter)%name// &
+                                ' already has *FRICTION')
+      end if
+      rough = has_param(kw, 'ROUGH')
+      has_c = has_param(kw, 'COHESION')
+      ok = .true.
+      c = 0.0_wp
+      if (has_c) then
+         call get_param(kw, 'COHESION', cstr, has_c)
+         call parse_real(cstr, c, stat)
+         if (stat /= num_ok) then
+            call err_here(p, 'COHESION='//cstr//' is not a number')
+            ok = .false.
+         else if (c < 0.0_wp) then
+            call err_here(p, 'cohesion COHESION='//cstr//' must not be negative', &
+                          'COHESION is the shear strength of the closed joint at zero pressure, '// &
+                          'c in |t_T| <= c + mu p')
+            ok = .false.
+         else if (rough) then
+            call err_here(p, 'COHESION is meaningless with ROUGH', &
+                          'ROUGH contact never slips; for a Mohr-Coulomb joint give mu on the data '// &
+                          'line and COHESION=c without ROUGH')
+            ok = .false.
+         end if
+      end if
+      mu = 0.0_wp
+      slope = 0.0_wp
+      if (rough) then
+         first = .true.
+         do
+            call advance(p)
+            if (p%src%kind /= line_data) exit
+            if (first) call err_here(p, '*FRICTION, ROUGH takes no data line', &
+                                     'ROUGH contact has no friction coefficient: remove the line, or '// &
+                                     'remove ROUGH for Coulomb friction')
+            first = .false.
+         end do
+      else
+         call advance(p)
+         if (p%src%kind /= line_data) then
+            call err_here(p, '*FRICTION needs a data line: mu [, stick slope]', &
+                          'mu is the friction coefficient; the stick slope (tangential traction per '// &
+                          'unit elastic slip) is optional: without it stick is exact')
+            ok = .false.
+         else
+            call split_fields(p%src%text(1:p%src%length), p%f)
+            if (p%f%n > 2) then
+               call err_here(p, 'too many fields on the *FRICTION data line: expected mu [, stick slope]')
+               ok = .false.
+            else
+               call get_real(p, 1, 'friction coefficient mu', mu, ok_mu, required=.true.)
+               call get_real(p, 2, 'stick slope', slope, ok_s)
+               if (ok_mu .and. mu < 0.0_wp) then
+                  call err_here(p, 'friction coefficient mu = '//field(p, 1)//' must not be negative', &
+                                'mu = tan(phi) of the joint; 0 is frictionless')
+                  ok_mu = .false.
+               end if
+               if (ok_s .and. slope < 0.0_wp) then
+                  call err_here(p, 'stick slope = '//field(p, 2)//' must not be negative', &
+                                'the stick slope is the tangential traction per unit elastic slip '// &
+                                '(CalculiX: about 1/100 of the normal penalty slope); leave it out '// &
+                                'for exact stick')
+                  ok_s = .false.
+               end if
+               ok = ok .and. ok_mu .and. ok_s
+            end if
+            first = .true.
+            do
+               call advance(p)
+               if (p%src%kind /= line_data) exit
+               if (first) call err_here(p, '*FRICTION takes one data line')
+               first = .false.
+            end do
+         end if
+      end if
+      if (p%cur_inter > 0 .and. .not. dup) then
+         model%interactions(p%cur_inter)%has_friction = .true.
+         if (ok) then
+            model%interactions(p%cur_inter)%mu = mu
+            model%interactions(p%cur_inter)%stick_slope = slope
+            model%interactions(p%cur_inter)%cohesion = c
+            model%interactions(p%cur_inter)%rough = rough
+         end if
+      end if
+   end subroutine read_friction
 
    !> After a *SURFACE BEHAVIOR that was reported as wrong, count the current interaction as
    !> having one, so that a pair using it does not report it again as missing.

@@ -26,7 +26,7 @@ module vemcontact_deck_outputs
       character(len=16) :: fields
    end type key_map_t
 
-   type(key_map_t), parameter :: known(12) = [ &
+   type(key_map_t), parameter :: known(14) = [ &
                                  key_map_t('U', output_node, 'U'), &
                                  key_map_t('RF', output_node, 'RF'), &
                                  key_map_t('S', output_element, 'S'), &
@@ -38,7 +38,10 @@ module vemcontact_deck_outputs
                                  key_map_t('CSTRESS', output_contact, 'CPRESS'), &
                                  key_map_t('CPRESS', output_contact, 'CPRESS'), &
                                  key_map_t('COPEN', output_contact, 'COPEN'), &
-                                 key_map_t('CSLIP', output_contact, 'CSLIP')]
+                                 key_map_t('CSLIP', output_contact, 'CSLIP'), &
+                                 ! the shear traction goes with the pressure (CalculiX's CSTR holds both)
+                                 key_map_t('CSHEAR', output_contact, 'CPRESS'), &
+                                 key_map_t('CSHEAR1', output_contact, 'CPRESS')]
 
    character(len=*), parameter :: category_name(3) = [character(len=7) :: 'nodal', 'element', 'contact']
    character(len=*), parameter :: category_article(3) = [character(len=2) :: 'a', 'an', 'a']

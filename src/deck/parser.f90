@@ -19,7 +19,7 @@ module vemcontact_deck_parser
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
                                        kw_output, kw_uplift, kw_equation, kw_part, kw_end_part, kw_assembly, &
                                        kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
-                                       kw_initial_conditions, kw_temperature, kw_expansion, kw_tie, kw_amplitude
+                                       kw_initial_conditions, kw_temperature, kw_expansion, kw_tie, kw_amplitude, kw_friction
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
@@ -35,7 +35,7 @@ module vemcontact_deck_parser
    use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_uplift, only: read_uplift
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
-                                      read_contact_pair, read_controls
+                                      read_contact_pair, read_controls, read_friction
    implicit none
    private
 
@@ -81,7 +81,7 @@ contains
             cycle
          end if
          if (id /= kw_elastic .and. id /= kw_density .and. id /= kw_expansion) p%cur_mat = 0
-         if (id /= kw_surface_behavior) p%cur_inter = 0
+         if (id /= kw_surface_behavior .and. id /= kw_friction) p%cur_inter = 0
          call check_keyword(p, kw, id, ok)
          if (ok) call check_context(p, id, ok)
          if (.not. ok) then
@@ -90,6 +90,7 @@ contains
             if (id == kw_material) p%cur_mat = -1   ! its *ELASTIC and *DENSITY are dropped silently
             if (id == kw_surface_interaction) p%cur_inter = -1   ! and its *SURFACE BEHAVIOR
             if (id == kw_surface_behavior) call drop_behavior(p, model)
+            if (id == kw_friction .and. p%cur_inter > 0) model%interactions(p%cur_inter)%has_friction = .true.
             call skip_data(p)
             cycle
          end if
@@ -155,6 +156,8 @@ contains
             call no_data(p, '*SURFACE INTERACTION')
          case (kw_surface_behavior)
             call read_behavior(p, model, kw)
+         case (kw_friction)
+            call read_friction(p, model, kw)
          case (kw_contact_pair)
             call read_contact_pair(p, kw)
          case (kw_contact_controls)

@@ -27,7 +27,7 @@ module vemcontact_deck_registry
                                  kw_part = 36, kw_end_part = 37, kw_assembly = 38, kw_end_assembly = 39, &
                                  kw_instance = 40, kw_end_instance = 41, kw_preprint = 42, kw_restart = 43, &
                                  kw_initial_conditions = 44, kw_temperature = 45, kw_expansion = 46, kw_tie = 47, &
-                                 kw_amplitude = 48
+                                 kw_amplitude = 48, kw_friction = 49
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -59,7 +59,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(48) = [ &
+   type(keyword_spec_t), parameter :: keywords(49) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -107,9 +107,10 @@ module vemcontact_deck_registry
                                       keyword_spec_t('TEMPERATURE', ctx_step, data_required), &
                                       keyword_spec_t('EXPANSION', ctx_model, data_required), &
                                       keyword_spec_t('TIE', ctx_model, data_required), &
-                                      keyword_spec_t('AMPLITUDE', ctx_any, data_required)]
+                                      keyword_spec_t('AMPLITUDE', ctx_any, data_required), &
+                                      keyword_spec_t('FRICTION', ctx_model, data_optional)]
 
-   type(param_spec_t), parameter :: params(152) = [ &
+   type(param_spec_t), parameter :: params(154) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -276,14 +277,18 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_boundary, 'AMPLITUDE', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_cload, 'AMPLITUDE', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_dload, 'AMPLITUDE', par_value, .false., val_name, ''), &
-                                    param_spec_t(kw_dsload, 'AMPLITUDE', par_value, .false., val_name, '')]
+                                    param_spec_t(kw_dsload, 'AMPLITUDE', par_value, .false., val_name, ''), &
+                                    ! *FRICTION under *SURFACE INTERACTION (src/deck/contact.f90)
+                                    param_spec_t(kw_friction, 'ROUGH', par_flag, .false., val_name, ''), &
+                                    ! vemcontact: Mohr-Coulomb cohesion; sign checked by the handler
+                                    param_spec_t(kw_friction, 'COHESION', par_value, .false., val_real, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
-   character(len=24), parameter :: calculix_only(22) = [character(len=24) :: &
+   character(len=24), parameter :: calculix_only(21) = [character(len=24) :: &
                                    'BEAMSECTION', 'BUCKLE', 'CONTROLS', &
                                    'COUPLING', 'CREEP', 'DEFORMATIONPLASTICITY', 'DYNAMIC', &
                                    'VISCO', 'FILM', 'FREQUENCY', &
-                                   'FRICTION', 'HEATTRANSFER', 'KINEMATIC', &
+                                   'HEATTRANSFER', 'KINEMATIC', &
                                    'MPC', 'ORIENTATION', 'PLASTIC', 'SHELLSECTION', &
                                    'SPECIFICHEAT', &
                                    'TIEPOINTS', 'TRANSFORM', 'CONDUCTIVITY', 'SPRING']

@@ -40,6 +40,7 @@ module vemcontact_driver_static
    use vemcontact_output_print, only: has_print_requests, write_print_csv
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_friction, only: tangent_stick, tangent_slip
    use vemcontact_log, only: logger_t
    use vemcontact_interrupt, only: interrupt_error, interrupt_context, is_interrupt, err_interrupt_base
    use vemcontact_solver_stop, only: agreed_stop_signal
@@ -729,7 +730,8 @@ contains
                                      reshape(pack(tab%x, spread(tab%pair == ip_, 1, 2)), [2, count(tab%pair == ip_)]), &
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
-                                     pack(tab%status, tab%pair == ip_), error, sel, cfluidp=fluid)
+                                     pack(tab%status, tab%pair == ip_), error, sel, &
+                                     cshear=pack(tab%cshear, tab%pair == ip_), cfluidp=fluid)
             if (allocated(error)) return
          end do
       end associate
@@ -740,6 +742,11 @@ contains
          ' slave nodes closed, max pressure ', rs%contact%max_pressure(), ', max penetration ', &
          rs%contact%max_penetration()
       call log%say(trim(buf))
+      if (rs%contact%fric%on) then
+         write (buf, '(2x,a,i0,a,i0,a)') 'friction: ', rs%contact%count_state(tangent_stick), ' stick, ', &
+            rs%contact%count_state(tangent_slip), ' slip'
+         call log%say(trim(buf))
+      end if
    end subroutine write_contact_results
 
    !> NNNN (the step, four digits or more) or NNNN_MMMM for increment `frame` > 0.

@@ -42,7 +42,7 @@ contains
       if (allocated(error)) return
       head = 'node,x,y'
       if (w%copen) head = head//',COPEN'
-      if (w%cpress) head = head//',CPRESS'
+      if (w%cpress) head = head//',CPRESS,CSHEAR'
       if (w%cpress .and. allocated(tab%cfluidp)) head = head//',CFLUIDP'
       if (w%cslip) head = head//',CSLIP'
       call out%write(head//',CNAREA,STATUS'//new_line('a'))
@@ -54,6 +54,7 @@ contains
          call column(tab%x(2, k))
          if (w%copen) call column(tab%copen(k))
          if (w%cpress) call column(tab%cpress(k))
+         if (w%cpress) call column(shear(k))
          if (w%cpress .and. allocated(tab%cfluidp)) call column(tab%cfluidp(k))
          if (w%cslip) call column(tab%cslip(k))
          call column(tab%cnarea(k))
@@ -67,6 +68,12 @@ contains
          write (num, '(",",es24.16e3)') v
          line = line//trim(num)
       end subroutine column
+      !> CSHEAR of row k (0 for a table made without it)
+      real(wp) function shear(k)
+         integer, intent(in) :: k
+         shear = 0.0_wp
+         if (allocated(tab%cshear)) shear = tab%cshear(k)
+      end function shear
    end subroutine write_contact_csv
 
    !> CSV name of a STATUS value.
@@ -78,6 +85,10 @@ contains
          s = 'CLOSED'
       case (2)
          s = 'SLID_OFF'
+      case (3)
+         s = 'STICK'
+      case (4)
+         s = 'SLIP'
       case default
          s = 'OPEN'
       end select
@@ -122,6 +133,8 @@ contains
       if (w%u) call put_array(unit, 'type="Float64" Name="U" NumberOfComponents="3"', as_bytes(xyz), ios, z)
       if (w%copen) call put_array(unit, 'type="Float64" Name="COPEN"', as_bytes(tab%copen), ios, z)
       if (w%cpress) call put_array(unit, 'type="Float64" Name="CPRESS"', as_bytes(tab%cpress), ios, z)
+      if (w%cpress .and. allocated(tab%cshear)) &
+         call put_array(unit, 'type="Float64" Name="CSHEAR"', as_bytes(tab%cshear), ios, z)
       if (w%cpress .and. allocated(tab%cfluidp)) &
          call put_array(unit, 'type="Float64" Name="CFLUIDP"', as_bytes(tab%cfluidp), ios, z)
       if (w%cslip) call put_array(unit, 'type="Float64" Name="CSLIP"', as_bytes(tab%cslip), ios, z)

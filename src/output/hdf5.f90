@@ -274,10 +274,11 @@ contains
    end subroutine h5_write_step
 
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
-   !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CNAREA
-   !> and STATUS (1 closed, 0 open), with *UPLIFT CFLUIDP beside CPRESS.
+   !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CSHEAR
+   !> (with CPRESS, when given), CNAREA and STATUS (0 open, 1 closed, 2 slid off, 3 stick,
+   !> 4 slip), with *UPLIFT CFLUIDP beside CPRESS.
    subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel, &
-                               cfluidp)
+                               cshear, cfluidp)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
@@ -285,6 +286,8 @@ contains
       integer, intent(in) :: status(:)
       type(error_t), allocatable, intent(out) :: error
       type(field_selection_t), intent(in), optional :: sel
+      !> the shear traction along the master's tangent (written beside CPRESS)
+      real(wp), intent(in), optional :: cshear(:)
       !> CFLUIDP, the water pressure in the joint (*UPLIFT), written beside CPRESS
       real(wp), intent(in), optional :: cfluidp(:)
       type(field_selection_t) :: w
@@ -308,6 +311,10 @@ contains
          call put_real(self, grp, 'COPEN', shape(copen, hsize_t), copen, error)
       if (.not. allocated(error) .and. w%cpress) &
          call put_real(self, grp, 'CPRESS', shape(cpress, hsize_t), cpress, error)
+      if (present(cshear)) then
+         if (.not. allocated(error) .and. w%cpress) &
+            call put_real(self, grp, 'CSHEAR', shape(cshear, hsize_t), cshear, error)
+      end if
       if (present(cfluidp)) then
          if (.not. allocated(error) .and. w%cpress) &
             call put_real(self, grp, 'CFLUIDP', shape(cfluidp, hsize_t), cfluidp, error)
@@ -323,7 +330,8 @@ contains
 
    !> Write /steps/NNNN/contact/iterations: one entry per contact iteration of the
    !> step (the paper's Table 1 and the log's iteration lines): iteration, active
-   !> (closed slave entries), changed, residual (relative), max_penetration,
+   !> (closed slave entries), changed, slip_changes (frictional entries that changed
+   !> between stick and slip), residual (relative), max_penetration,
    !> max_pressure, step (line search), factorized (1: a numeric factorization was
    !> paid), rebuilt (1: the matrix pattern was rebuilt), time (wall seconds).  Call
    !> after write_contact of the step's pairs.
@@ -354,6 +362,8 @@ contains
       if (.not. allocated(error)) call put_int(self, grp, 'active', dims, col, error)
       col = records%changed
       if (.not. allocated(error)) call put_int(self, grp, 'changed', dims, col, error)
+      col = records%slip_changes
+      if (.not. allocated(error)) call put_int(self, grp, 'slip_changes', dims, col, error)
       col = merge(1, 0, records%factorized)
       if (.not. allocated(error)) call put_int(self, grp, 'factorized', dims, col, error)
       col = merge(1, 0, records%rebuilt)

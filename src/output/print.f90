@@ -116,6 +116,7 @@ contains
                         call row(var, 'node', tab%node_id(n), var, tab%copen(n))
                      case ('CPRESS')
                         call row(var, 'node', tab%node_id(n), var, tab%cpress(n))
+                        if (allocated(tab%cshear)) call row('CSHEAR', 'node', tab%node_id(n), 'CSHEAR', tab%cshear(n))
                         ! with *UPLIFT the water pressure in the joint, beside the effective CPRESS
                         if (allocated(tab%cfluidp)) &
                            call row('CFLUIDP', 'node', tab%node_id(n), 'CFLUIDP', tab%cfluidp(n))

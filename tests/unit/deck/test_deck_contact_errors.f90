@@ -112,6 +112,37 @@ program test_deck_contact_errors
    b(6) = '** no behavior'
    b(7) = '**'
    call expect('beh_missing', with_block(b), 12, 'surface interaction I has no *SURFACE BEHAVIOR')
+   ! *FRICTION (after the behavior: deck lines 15 and 16)
+   call read_deck(write_deck('fric_ok', with_block(cbi(7, '*FRICTION, COHESION=2.5'//nl//'0.6, 1e4'))), m, err)
+   call t%check(.not. allocated(err), '*FRICTION with mu, stick slope and COHESION is accepted')
+   if (.not. allocated(err)) then
+      call t%check(m%interactions(1)%has_friction .and. abs(m%interactions(1)%mu - 0.6_wp) <= 0.0_wp .and. &
+                   abs(m%interactions(1)%stick_slope - 1.0e4_wp) <= 0.0_wp .and. &
+                   abs(m%interactions(1)%cohesion - 2.5_wp) <= 0.0_wp, 'mu, stick slope and cohesion are read')
+   end if
+   call read_deck(write_deck('fric_before', with_block(cbi(5, '*FRICTION'//nl//'0.'))), m, err)
+   call t%check(.not. allocated(err), '*FRICTION before *SURFACE BEHAVIOR, mu = 0: accepted')
+   call read_deck(write_deck('fric_rough', with_block(cbi(7, '*FRICTION, ROUGH'))), m, err)
+   call t%check(.not. allocated(err), '*FRICTION, ROUGH is accepted')
+   if (.not. allocated(err)) call t%check(m%interactions(1)%rough, 'ROUGH is read')
+   call expect('fric_mu_neg', with_block(cbi(7, '*FRICTION'//nl//'-0.1')), 16, &
+               'friction coefficient mu = -0.1 must not be negative')
+   call expect('fric_slope_neg', with_block(cbi(7, '*FRICTION'//nl//'0.3, -5.')), 16, &
+               'stick slope = -5. must not be negative')
+   call expect('fric_c_neg', with_block(cbi(7, '*FRICTION, COHESION=-1'//nl//'0.3')), 15, &
+               'cohesion COHESION=-1 must not be negative')
+   call expect('fric_c_rough', with_block(cbi(7, '*FRICTION, ROUGH, COHESION=1')), 15, &
+               'COHESION is meaningless with ROUGH')
+   call expect('fric_alone', with_block(cbi(4, '*FRICTION'//nl//'0.3')), 12, &
+               '*FRICTION must follow a *SURFACE INTERACTION')
+   call expect('fric_no_data', with_block(cbi(7, '*FRICTION')), 16, '*FRICTION needs a data line')
+   call expect('fric_fields', with_block(cbi(7, '*FRICTION'//nl//'0.3, 1., 2.')), 16, &
+               'too many fields on the *FRICTION data line')
+   call expect('fric_rough_data', with_block(cbi(7, '*FRICTION, ROUGH'//nl//'0.3')), 16, &
+               '*FRICTION, ROUGH takes no data line')
+   call expect('fric_twice', with_block(cbi(7, '*FRICTION'//nl//'0.3'//nl//'*FRICTION'//nl//'0.2')), 17, &
+               'surface interaction I already has *FRICTION')
+   call expect('fric_in_step', ins(15, '*FRICTION'//nl//'0.3'), 16, '*FRICTION is not allowed inside a *STEP')
    call expect('inter_twice', with_block(cbi(7, '*SURFACE INTERACTION, NAME=I')), 15, &
                'surface interaction I already defined at ')
    call expect('inter_data', with_block(cbi(5, '1.')), 13, &
