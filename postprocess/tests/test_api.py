@@ -16,10 +16,10 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 INPUTS = os.path.join(ROOT, "inputs")
 
 # docs/output-format.md, "HDF5": the datasets of a step group without output requests
-STEP_FIELDS = {"U", "S_element", "S_node", "E_element", "E_node", "RF", "RF_total", "ERROR_INDICATOR"}
-CONTACT_COLUMNS = {"node_ids", "coordinates", "COPEN", "CPRESS", "CSLIP", "CNAREA", "STATUS"}
+STEP_FIELDS = {"U", "S_element", "S_node", "E_element", "E_node", "RF", "RF_total", "LOAD_total", "ERROR_INDICATOR"}
+CONTACT_COLUMNS = {"node_ids", "coordinates", "COPEN", "CPRESS", "CSHEAR", "CSLIP", "CNAREA", "STATUS"}
 ITERATION_COLUMNS = {"iteration", "active", "changed", "residual", "max_penetration", "max_pressure", "step",
-                     "time", "factorized", "rebuilt"}
+                     "time", "factorized", "rebuilt", "slip_changes"}
 
 
 @pytest.fixture(scope="module")

@@ -87,11 +87,11 @@ def deck(tmp_path, name, include, xy, in_upper, q, jump, behavior, friction):
     u[in_upper] += jump
     boundary = (np.isclose(xy[:, 0], 0.0) | np.isclose(xy[:, 0], 4.0) | np.isclose(xy[:, 1], 0.0)
                 | np.isclose(xy[:, 1], 2.0))
-    lines = [f"{i + 1}, {d + 1}, {d + 1}, {u[i, d]!r}" for i in np.flatnonzero(boundary) for d in (0, 1)]
+    lines = [f"{i + 1}, {d + 1}, {d + 1}, {float(u[i, d])!r}" for i in np.flatnonzero(boundary) for d in (0, 1)]
     text = f"""*INCLUDE, INPUT={include}
 *MATERIAL, NAME=M
 *ELASTIC
-{E!r}, {NU!r}
+{float(E)!r}, {float(NU)!r}
 *SOLID SECTION, ELSET=LOWER, MATERIAL=M
 1.0
 *SOLID SECTION, ELSET=UPPER, MATERIAL=M

@@ -44,7 +44,7 @@ def deck(tmp_path, name, etype, pair_type, behavior, friction, nbase=9, nblock=6
     bid, bxy, bq = grid(0.0, 4.0, nbase, 3, lambda x: -1.0, joint, 1)
     kid, kxy, kq = grid(1.0, 3.0, nblock, 4, joint, lambda x: joint(x) + 1.0, bid.size + 1)
     nodes = np.vstack([bxy, kxy])
-    lines = ["*NODE"] + [f"{i + 1}, {x!r}, {y!r}" for i, (x, y) in enumerate(nodes)]
+    lines = ["*NODE"] + [f"{i + 1}, {float(x)!r}, {float(y)!r}" for i, (x, y) in enumerate(nodes)]
     ne = len(bq)
     lines += [f"*ELEMENT, TYPE={etype}, ELSET=BASE"] + [f"{e + 1}, " + ", ".join(map(str, q)) for e, q in enumerate(bq)]
     lines += [f"*ELEMENT, TYPE={etype}, ELSET=BLOCK"]
@@ -53,7 +53,7 @@ def deck(tmp_path, name, etype, pair_type, behavior, friction, nbase=9, nblock=6
     bottom_block = [ne + i + 1 for i in range(nblock)]              # first row: side S1 on the joint
     load = np.full(nblock + 1, G / nblock)
     load[[0, -1]] *= 0.5
-    lines += ["*MATERIAL, NAME=M", "*ELASTIC", f"{E!r}, {NU!r}",
+    lines += ["*MATERIAL, NAME=M", "*ELASTIC", f"{float(E)!r}, {float(NU)!r}",
               "*SOLID SECTION, ELSET=BASE, MATERIAL=M", "1.0", "*SOLID SECTION, ELSET=BLOCK, MATERIAL=M", "1.0",
               "*SURFACE, NAME=MASTER"] + [f"{e}, S3" for e in top_base]
     lines += ["*SURFACE, NAME=SLAVE"] + [f"{e}, S1" for e in bottom_block]
@@ -61,8 +61,8 @@ def deck(tmp_path, name, etype, pair_type, behavior, friction, nbase=9, nblock=6
               f"*CONTACT PAIR, INTERACTION=I, TYPE={pair_type}", "SLAVE, MASTER",
               "*NSET, NSET=PUSHED"] + [str(i) for i in kid[1:, 0]]
     lines += ["*BOUNDARY"] + [f"{i}, 1, 2" for i in bid[0]]
-    lines += ["*STEP", "*STATIC", "*BOUNDARY", f"PUSHED, 1, 1, {PUSH!r}", "*CLOAD"]
-    lines += [f"{i}, 2, {-w!r}" for i, w in zip(kid[-1], load)]
+    lines += ["*STEP", "*STATIC", "*BOUNDARY", f"PUSHED, 1, 1, {float(PUSH)!r}", "*CLOAD"]
+    lines += [f"{i}, 2, {float(-w)!r}" for i, w in zip(kid[-1], load)]
     lines += ["*END STEP"]
     path = tmp_path / f"{name}.inp"
     path.write_text("\n".join(lines) + "\n")
@@ -104,8 +104,8 @@ CASES = {
 @pytest.mark.parametrize("cohesion", [0.0, 0.5])
 def test_push_up_incline(exe, tmp_path, case, cohesion):
     etype, pair_type, behavior, slope = CASES[case]
-    param = f", COHESION={cohesion!r}" if cohesion > 0.0 else ""
-    path, pushed = deck(tmp_path, case, etype, pair_type, behavior, f"*FRICTION{param}\n{MU!r}{slope}")
+    param = f", COHESION={float(cohesion)!r}" if cohesion > 0.0 else ""
+    path, pushed = deck(tmp_path, case, etype, pair_type, behavior, f"*FRICTION{param}\n{float(MU)!r}{slope}")
     force, status, area, iterations = run(exe, path, pushed)
     # every joint node closed and slipping: the limit state
     assert (status == 4).all(), status
@@ -118,7 +118,7 @@ def test_finite_sliding_refused(exe, tmp_path):
     """*FRICTION on a NODE TO SURFACE pair without SMALL SLIDING: one message naming
     the pair's file:line and the remedy, exit 1, no results."""
     path, _ = deck(tmp_path, "finite", "CPE4", "NODE TO SURFACE", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD",
-                   f"*FRICTION\n{MU!r}")
+                   f"*FRICTION\n{float(MU)!r}")
     r = subprocess.run([exe, "-q", "-o", str(tmp_path / "o"), str(path)], capture_output=True, text=True)
     assert r.returncode == 1
     assert "friction (*FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING" in r.stderr
@@ -142,7 +142,7 @@ def pad_deck(tmp_path, friction):
     rq = [tuple(int(pid[int(np.argwhere(rid == n)[0][0]) + 1, -1]) if n in rid[:, 0] else int(n) for n in q)
           for q in rq]
     nodes = np.vstack([pxy, bxy, rxy])
-    lines = ["*NODE"] + [f"{i + 1}, {x!r}, {y!r}" for i, (x, y) in enumerate(nodes) if i + 1 not in rid[:, 0]]
+    lines = ["*NODE"] + [f"{i + 1}, {float(x)!r}, {float(y)!r}" for i, (x, y) in enumerate(nodes) if i + 1 not in rid[:, 0]]
     elems, e = [], 0
     for name, quads in (("PAD", pq), ("BASE", bq), ("BAR", rq)):
         lines.append(f"*ELEMENT, TYPE=VPE, ELSET={name}")
@@ -151,7 +151,7 @@ def pad_deck(tmp_path, friction):
             lines.append(f"{e}, " + ", ".join(map(str, q)))
         elems.append(e)
     npad, nbase = len(pq), len(bq)
-    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", "2.1e5, 0.0", "*MATERIAL, NAME=SPRING", "*ELASTIC", f"{16.0 / 3.0!r}, 0.0",
+    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", "2.1e5, 0.0", "*MATERIAL, NAME=SPRING", "*ELASTIC", f"{float(16.0 / 3.0)!r}, 0.0",
               "*SOLID SECTION, ELSET=PAD, MATERIAL=STEEL", "1.0", "*SOLID SECTION, ELSET=BASE, MATERIAL=STEEL", "1.0",
               "*SOLID SECTION, ELSET=BAR, MATERIAL=SPRING", "1.0",
               "*SURFACE, NAME=MASTER"] + [f"{npad + nbase - 7 + i + 1}, S3" for i in range(7)]
@@ -163,10 +163,10 @@ def pad_deck(tmp_path, friction):
     top[[0, -1]] *= 0.5
     side = np.full(5, 5.0)
     side[[0, -1]] *= 0.5
-    lines += ["*STEP", "*STATIC", "*CLOAD"] + [f"{i}, 2, {-w!r}" for i, w in zip(pid[-1], top)] + ["*END STEP"]
+    lines += ["*STEP", "*STATIC", "*CLOAD"] + [f"{i}, 2, {float(-w)!r}" for i, w in zip(pid[-1], top)] + ["*END STEP"]
     for p in (178.2, 181.8):
-        lines += ["*STEP", "*STATIC", "*CLOAD"] + [f"{i}, 2, {-w!r}" for i, w in zip(pid[-1], top)]
-        lines += [f"{i}, 1, {p * w!r}" for i, w in zip(pid[:, 0], side)] + ["*END STEP"]
+        lines += ["*STEP", "*STATIC", "*CLOAD"] + [f"{i}, 2, {float(-w)!r}" for i, w in zip(pid[-1], top)]
+        lines += [f"{i}, 1, {float(p * w)!r}" for i, w in zip(pid[:, 0], side)] + ["*END STEP"]
     path = tmp_path / "pad.inp"
     path.write_text("\n".join(lines) + "\n")
     return path

@@ -462,8 +462,13 @@ contains
       integer, intent(in) :: istep
       type(error_t), allocatable, intent(inout) :: error
       character(len=300) :: buf
-      character(len=:), allocatable :: why
+      character(len=:), allocatable :: why, help
+      integer :: k
       why = first_line(error%message)
+      ! the contact iteration's own help lines (what the run can change) stay
+      k = index(error%message, new_line('a'))
+      help = ''
+      if (k > 0) help = error%message(k:)
       deallocate (error)
       if (ctl%direct) then
          write (buf, '(a,es12.5,a,es12.5,a)') ' did not converge at step time ', ctl%t, ' of ', ctl%period, &
@@ -472,7 +477,7 @@ contains
          write (buf, '(a,es12.5,a,es12.5,a,es10.3,a)') ' did not converge at step time ', ctl%t, ' of ', &
             ctl%period, ': the increment reached its minimum ', ctl%dt_min, ': '
       end if
-      call fatal_error(error, 'error: step '//step_name(model, istep)//trim(buf)//' '//why//new_line('a')// &
+      call fatal_error(error, 'error: step '//step_name(model, istep)//trim(buf)//' '//why//help//new_line('a')// &
                        '  = help: a smaller initial or minimum increment on the *STATIC data line, '// &
                        'or more contact iterations (*CONTACT CONTROLS, MAXIT)', err_solver)
    end subroutine increment_failure

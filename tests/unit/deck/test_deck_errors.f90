@@ -31,7 +31,7 @@ program test_deck_errors
    ! keyword lines
    call expect('unknown_kw', ins(5, '*FOO, BAR=1'), 6, 'unknown keyword *FOO')
    call expect('spelling', ins(5, '*ELEMNT, TYPE=CPE4'), 6, 'did you mean *ELEMENT?')
-   call expect('calculix_kw', ins(5, '*TIE'), 6, 'keyword *TIE is not supported')
+   call expect('calculix_kw', ins(5, '*ORIENTATION, NAME=O'), 6, 'keyword *ORIENTATION is not supported')
    call expect('unknown_param', rep(1, '*NODE, NSETT=A'), 1, 'unknown parameter NSETT of *NODE')
    call expect('param_suggest', rep(1, '*NODE, NSETT=A'), 1, 'did you mean NSET?')
    call expect('param_no_value', ins(5, '*NSET, NSET='), 6, 'parameter NSET of *NSET needs a value')
