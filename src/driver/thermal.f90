@@ -264,11 +264,7 @@ contains
             if (present(s_at)) then
                first = model%elem_ptr(e)
                do i = 1, int(model%elem_ptr(e + 1) - first)
-                  if (element_order(model%elem_type(e)) == 2) then
-                     call correct(s_at(:, first + i - 1), dtemp(model%elem_conn(first + i - 1)))
-                  else
-                     call correct(s_at(:, first + i - 1), dmean)
-                  end if
+                  call correct(s_at(:, first + i - 1), point_dt(model, dtemp, e, first + i - 1, dmean))
                end do
             end if
          end associate
@@ -308,11 +304,7 @@ contains
             if (present(e_at)) then
                first = model%elem_ptr(e)
                do i = 1, int(model%elem_ptr(e + 1) - first)
-                  if (element_order(model%elem_type(e)) == 2) then
-                     call add(e_at(:, first + i - 1), dtemp(model%elem_conn(first + i - 1)))
-                  else
-                     call add(e_at(:, first + i - 1), dmean)
-                  end if
+                  call add(e_at(:, first + i - 1), point_dt(model, dtemp, e, first + i - 1, dmean))
                end do
             end if
          end associate
@@ -330,6 +322,21 @@ contains
          end associate
       end subroutine add
    end subroutine thermal_strain
+
+   !> dT at the element point k (an index into elem_conn) of element e: the node's own
+   !> for a second-order element, whose stress varies over it, the element's mean
+   !> `dmean` for a first-order one, whose nodal stress is the element's.
+   pure real(wp) function point_dt(model, dtemp, e, k, dmean)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: dtemp(:), dmean
+      integer, intent(in) :: e
+      integer(ip), intent(in) :: k
+      if (element_order(model%elem_type(e)) == 2) then
+         point_dt = dtemp(model%elem_conn(k))
+      else
+         point_dt = dmean
+      end if
+   end function point_dt
 
    !> The mean of dT over element e: its linear fit at the centroid of the corners' polygon.
    pure real(wp) function mean_dt(model, dtemp, e)
