@@ -89,3 +89,83 @@ def test_plate_hole_follows_kirsch(exe, tmp_path):
     far = np.argmin(np.hypot(x[:, 0] - 4.0, x[:, 1]))
     assert abs(s[top, 0] / 100.0 - 3.0) < 0.75
     assert abs(s[far, 0] / 100.0 - 1.0) < 0.25   # remote stress on the loaded edge
+
+
+# The frictional deck (two_blocks_friction: the two blocks pressed, then the upper one
+# dragged 2e-4 along x in 5 increments; LINEAR 1e6 with sigma_inf, *FRICTION 0.2 with
+# the stick slope 1e4; NODE TO SURFACE, SMALL SLIDING).  Measured against ccx 2.20:
+# U 1.5e-5 (step 1) and 3.9e-4 (step 2) of max |U|; CPRESS and CSHEAR 7.6e-5 of their
+# largest value; CSLIP 1.1e-4.  What is left is the formulations' difference, not
+# round-off: ccx pairs and measures the gaps and slips in the current configuration
+# (the drag moves the block by 2e-4 of its size, and the slip is measured along the
+# moved tangents), adds sigma_inf's offset (2.5e-4 / 0.1 = 2.5e-3 of the pressure at
+# zero gap, far less at the closed gaps here) and spreads each node's contact over its
+# expanded 3D faces (its two face nodes differ by up to 1.4 % at the surface's ends;
+# their mean is stored).  Hence 1e-3 for U, 3e-4 for the contact tractions and slip.
+# Conventions: ccx's CSHEAR1 (tang1) has the sign of our CSHEAR; its relative
+# tangential displacement is the opposite of our CSLIP (a sticking node has CSHEAR =
+# lambda * its ccx slip, = -lambda * CSLIP here).
+FRICTION_DECK = "two_blocks_friction"
+FRICTION_TOL = {"U": 1e-3, "CPRESS": 3e-4, "CSHEAR": 3e-4, "CSLIP": 3e-4}
+
+
+def friction_differences(h5, ref_u, ref_c):
+    """Per step: the largest differences of U, CPRESS, CSHEAR and CSLIP between our HDF5
+    results and ccx's tables (arrays step,node,values), relative to the largest ccx value."""
+    out = []
+    with h5py.File(h5) as f:
+        ids = f["mesh/node_ids"][...].tolist()
+        for step in (1, 2):
+            g = f[f"steps/{step:04d}"]
+            u = dict(zip(ids, g["U"][...]))
+            ru = ref_u[ref_u[:, 0] == step]
+            ours = np.array([u[int(n)] for n in ru[:, 1]])
+            d = {"U": np.abs(ours - ru[:, 2:4]).max() / np.abs(ru[:, 2:4]).max()}
+            pair = g["contact/pair_1"]
+            slave = pair["node_ids"][...].tolist()
+            rc = ref_c[ref_c[:, 0] == step]
+            at = [slave.index(int(n)) for n in rc[:, 1]]
+            for name, col, sign in (("CPRESS", 2, 1.0), ("CSHEAR", 3, 1.0), ("CSLIP", 4, -1.0)):
+                ours = pair[name][...][at]
+                d[name] = np.abs(ours - sign * rc[:, col]).max() / np.abs(rc[:, col]).max()
+            d["STATUS"] = pair["STATUS"][...]
+            out.append(d)
+    return out
+
+
+def check_friction(diffs):
+    for step, d in enumerate(diffs, start=1):
+        for name, tol in FRICTION_TOL.items():
+            assert d[name] < tol, (step, name, d[name])
+    # step 2 drags the whole joint: every node slips
+    assert (diffs[1]["STATUS"] == 4).all(), diffs[1]["STATUS"]
+
+
+def test_friction_deck_agrees_with_stored_ccx(exe, tmp_path):
+    shutil.copy(DATA / f"{FRICTION_DECK}.inp", tmp_path)
+    r = subprocess.run([exe, "-q", "-o", str(tmp_path), f"{FRICTION_DECK}.inp"], cwd=tmp_path,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    ref_u = np.loadtxt(DATA / f"{FRICTION_DECK}.ccx.csv", delimiter=",", skiprows=1)
+    ref_c = np.loadtxt(DATA / f"{FRICTION_DECK}.ccx_contact.csv", delimiter=",", skiprows=1)
+    check_friction(friction_differences(tmp_path / f"{FRICTION_DECK}.h5", ref_u, ref_c))
+
+
+@pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (ccx) is not installed")
+def test_friction_deck_agrees_with_ccx(exe, tmp_path):
+    from make_decks import ccx_step_results, deck_node_ids
+    (tmp_path / "vc").mkdir()
+    (tmp_path / "ccx").mkdir()
+    for sub in ("vc", "ccx"):
+        shutil.copy(DATA / f"{FRICTION_DECK}.inp", tmp_path / sub)
+    r = subprocess.run([exe, "-q", "-o", ".", f"{FRICTION_DECK}.inp"], cwd=tmp_path / "vc",
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    r = subprocess.run(["ccx", "-i", FRICTION_DECK], cwd=tmp_path / "ccx", capture_output=True, text=True,
+                       env={"OMP_NUM_THREADS": "1", "PATH": "/usr/bin:/bin"})
+    assert r.returncode == 0, r.stdout[-2000:]
+    results = ccx_step_results(tmp_path / "ccx" / f"{FRICTION_DECK}.dat", (1.0, 2.0),
+                               deck_node_ids(DATA / f"{FRICTION_DECK}.inp"))
+    ref_u = np.array([(s, n, *u[n]) for s, (u, _) in enumerate(results, start=1) for n in sorted(u)])
+    ref_c = np.array([(s, n, *c[n]) for s, (_, c) in enumerate(results, start=1) for n in sorted(c)])
+    check_friction(friction_differences(tmp_path / "vc" / f"{FRICTION_DECK}.h5", ref_u, ref_c))

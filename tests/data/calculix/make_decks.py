@@ -9,6 +9,10 @@ vemcontact (postprocess/tests/test_calculix_decks.py).
     cd /tmp && for d in plate_hole_cpe4 plate_hole_cpe3 two_blocks_contact; do
       cp $OLDPWD/tests/data/calculix/$d.inp . && ccx -i $d; done
     python -c "import make_decks as m; m.write_reference('/tmp/D.dat', 'D.ccx.csv')"   # per deck D
+    # the friction deck (two steps, contact results too):
+    cd /tmp && cp $OLDPWD/tests/data/calculix/two_blocks_friction.inp . && ccx -i two_blocks_friction
+    python -c "import make_decks as m; m.write_friction_reference('/tmp/two_blocks_friction.dat',
+        'two_blocks_friction', m.deck_node_ids('two_blocks_friction.inp'))"
 """
 from pathlib import Path
 
@@ -144,6 +148,28 @@ def blocks_deck(pressure=0.1, k=1.0e6, sigma_inf=2.5e-4):
     return "\n".join(lines) + "\n"
 
 
+def friction_blocks_deck(pressure=0.1, k=1.0e6, sigma_inf=2.5e-4, mu=0.2, slope=1.0e4, push=2.0e-4):
+    """The two blocks of blocks_deck with Coulomb friction (mu, stick slope): step 1
+    presses the upper block down as there (its left edge held in x); step 2 keeps the
+    pressure and moves the upper block's left edge by `push` along x in 5 fixed
+    increments, dragging it along the lower block: the elastic slip allowed by the
+    stick slope (mu p / slope = 2e-6 at p = 0.1) is a hundredth of the push, so the
+    joint slips (|CSHEAR| = mu CPRESS) where it is pressed and the push is small
+    enough (1e-4 of the block size) for ccx's current configuration to stay the
+    undeformed one to 1e-4."""
+    text = blocks_deck(pressure, k, sigma_inf)
+    text = text.replace("Two blocks in contact: an upper block pressed onto a lower block",
+                        "Two blocks in contact with Coulomb friction: pressed, then dragged along x")
+    text = text.replace(f"{k:g}, {sigma_inf:g}, 1e-3\n",
+                        f"{k:g}, {sigma_inf:g}, 1e-3\n*FRICTION\n{fmt(mu)}, {fmt(slope)}\n")
+    # vemcontact combines friction with the pairing of the undeformed state only
+    text = text.replace("TYPE=NODE TO SURFACE\n", "TYPE=NODE TO SURFACE, SMALL SLIDING\n")
+    text = text.replace("*CONTACT PRINT\nCSTR, CDIS\n*END STEP\n", "*CONTACT PRINT\nCSTR, CDIS\n*END STEP\n"
+                        "*STEP\n*STATIC, DIRECT\n0.2, 1.\n*BOUNDARY\n"
+                        f"UPLEFT, 1, 1, {fmt(push)}\n*END STEP\n")
+    return text
+
+
 def ccx_displacements(dat):
     """{node id: (ux, uy)} from the *NODE PRINT blocks of a ccx .dat file."""
     out, on = {}, False
@@ -158,6 +184,72 @@ def ccx_displacements(dat):
     return out
 
 
+def ccx_tables(dat):
+    """Every table of a ccx .dat file as (title, time, {id: values}), in file order."""
+    out = []
+    for line in Path(dat).read_text().splitlines():
+        t = line.split()
+        if " time " in line and not t[0].replace(".", "").isdigit():
+            out.append((line.split("(")[0].strip(), float(t[-1]), {}))
+        elif t and out and t[0].isdigit():
+            out[-1][2][int(t[0])] = tuple(float(v) for v in t[1:])
+    return out
+
+
+def ccx_step_results(dat, times, node_ids):
+    """Per step end time: {node: (ux, uy)} and {slave node: (press, tang1, slip1)} of
+    a 2D deck.  ccx prints contact results at the nodes of its expanded 3D mesh: the
+    node with the k-th smallest id of the deck (k from 0) becomes nodes m + 3k + 1,
+    m + 3k + 2, m + 3k + 3 (m the largest id; the first and last on the faces z = -t/2
+    and t/2, which carry the contact); the two face values are averaged (they differ
+    at the surface's ends, where ccx's 3D contact is not uniform through the
+    thickness: up to 1.4 % here)."""
+    ids = sorted(node_ids)
+    m = ids[-1]
+    res = []
+    for time in times:
+        tabs = {title: vals for title, tt, vals in ccx_tables(dat) if abs(tt - time) < 1e-9}
+        u = {}
+        for title, vals in tabs.items():
+            if title.startswith("displacements"):
+                u.update({n: v[:2] for n, v in vals.items()})
+        stress, slip = tabs["contact stress"], tabs["relative contact displacement"]
+        contact = {}
+        for e in stress:
+            k, r = divmod(e - m - 1, 3)
+            if r == 0:
+                other = e + 2
+                press = 0.5 * (stress[e][0] + stress[other][0])
+                tang = 0.5 * (stress[e][1] + stress[other][1])
+                s1 = 0.5 * (slip[e][1] + slip[other][1])
+                contact[ids[k]] = (press, tang, s1)
+        res.append((u, contact))
+    return res
+
+
+def write_friction_reference(dat, stem, node_ids, times=(1.0, 2.0)):
+    """The ccx results of the friction deck: STEM.ccx.csv (step,node,ux,uy) and
+    STEM.ccx_contact.csv (step,node,CPRESS,CSHEAR,CSLIP: ccx's press, tang1 and the
+    relative tangential displacement tang1)."""
+    rows_u, rows_c = ["step,node,ux,uy"], ["step,node,CPRESS,CSHEAR,CSLIP"]
+    for step, (u, contact) in enumerate(ccx_step_results(dat, times, node_ids), start=1):
+        rows_u += [f"{step},{n},{u[n][0]:.6E},{u[n][1]:.6E}" for n in sorted(u)]
+        rows_c += [f"{step},{n},{v[0]:.6E},{v[1]:.6E},{v[2]:.6E}" for n, v in sorted(contact.items())]
+    Path(f"{stem}.ccx.csv").write_text("\n".join(rows_u) + "\n")
+    Path(f"{stem}.ccx_contact.csv").write_text("\n".join(rows_c) + "\n")
+
+
+def deck_node_ids(inp):
+    """The node ids of a deck's *NODE blocks."""
+    ids, on = [], False
+    for line in Path(inp).read_text().splitlines():
+        if line.startswith("*"):
+            on = line.upper().startswith("*NODE") and not line.upper().startswith(("*NODE FILE", "*NODE PRINT"))
+        elif on and line.strip():
+            ids.append(int(line.split(",")[0]))
+    return ids
+
+
 def write_reference(dat, csv):
     """The ccx displacements as node,ux,uy (the stored reference when ccx is absent)."""
     u = ccx_displacements(dat)
@@ -169,3 +261,4 @@ if __name__ == "__main__":
     (HERE / "plate_hole_cpe4.inp").write_text(plate_deck("CPE4"))
     (HERE / "plate_hole_cpe3.inp").write_text(plate_deck("CPE3"))
     (HERE / "two_blocks_contact.inp").write_text(blocks_deck())
+    (HERE / "two_blocks_friction.inp").write_text(friction_blocks_deck())
