@@ -161,12 +161,46 @@ def figures(crack_profiles, mindlin_profiles, out):
     fig.savefig(out / "friction_mindlin.png", dpi=120)
 
 
+def increment_iterations(h5):
+    """From the run's log (JOB.log beside JOB.h5; the HDF5 records hold each step's last
+    increment only): the contact iterations of every increment, and the number of
+    increments cut back.  Log text is fine for a benchmark, not for a test."""
+    log = pathlib.Path(h5).with_suffix(".log").read_text()
+    its = [int(line.split("converged in")[1].split()[0]) for line in log.splitlines() if "contact converged in" in line]
+    return its, log.count("increment not converged: cut back")
+
+
+def iteration_study(exe, work):
+    """Every increment of the verification decks at the sizes the tests run, and the
+    CalculiX friction deck: the most contact iterations of an increment, cut-backs."""
+    rows = []
+    decks = [("F4 slip (beta 30, mu 0.3), CPE4 a/10", fc.crack_deck(work / "it_crack.inp", 10, 30.0, 0.3)),
+             ("F4 stick (beta 60, mu 0.6), CPE4 a/10", fc.crack_deck(work / "it_stick.inp", 10, 60.0, 0.6)),
+             ("F5 Cattaneo-Mindlin, CPE4 a/10, 4 increments",
+              fc.mindlin_deck(work / "it_mindlin.inp", 10, press=-0.045, shift=0.010)),
+             ("F5 with the stick slope 1e4 (10 E), a/10",
+              fc.mindlin_deck(work / "it_mindlin_slope.inp", 10, press=-0.045, shift=0.010, slope=1.0e4))]
+    ccx = ROOT / "tests" / "data" / "calculix" / "two_blocks_friction.inp"
+    (work / "it_ccx.inp").write_text(ccx.read_text())
+    decks.append(("CalculiX two blocks, 5 increments", work / "it_ccx.inp"))
+    for name, path in decks:
+        its, cuts = increment_iterations(fc.run(exe, path))
+        rows.append(f"| {name} | {len(its)} | {max(its)} | {cuts} |")
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--exe", default=str(ROOT / "build" / "vemcontact"))
     ap.add_argument("--quick", action="store_true", help="the coarse meshes only")
     ap.add_argument("--no-figures", action="store_true")
+    ap.add_argument("--iterations", action="store_true", help="only the iterations of every increment")
     args = ap.parse_args()
+    if args.iterations:
+        with tempfile.TemporaryDirectory() as tmp:
+            print("| deck | increments (with contact) | most iterations | cut-backs |\n|---|---|---|---|")
+            print("\n".join(iteration_study(args.exe, pathlib.Path(tmp))))
+        return
     ns_crack = [5, 10, 20] if args.quick else [5, 10, 20, 40, 80]
     ns_mindlin = [5, 10, 20] if args.quick else [5, 10, 20, 40, 80]
     with tempfile.TemporaryDirectory() as tmp:
