@@ -63,24 +63,26 @@ def edge_forces(xs, traction):
 CRACK = dict(E=1.0e4, nu=0.25, sigma=10.0, a=1.0)
 
 
-def crack_slip(x, beta_deg, mu, E=CRACK["E"], nu=CRACK["nu"], sigma=CRACK["sigma"], a=CRACK["a"]):
+def crack_slip(x, beta_deg, mu, cohesion=0.0, E=CRACK["E"], nu=CRACK["nu"], sigma=CRACK["sigma"], a=CRACK["a"]):
     """Sliding displacement delta(x) = 4 (1 - nu^2) tau_eff sqrt(a^2 - x^2) / E of a closed
     crack of half-length a under uniaxial compression sigma at beta to the crack, plane
-    strain, Coulomb friction mu (no cohesion): tau_eff = sigma sin(b) (cos(b) - mu sin(b)),
-    0 when negative (the crack sticks)."""
+    strain, Mohr-Coulomb friction mu with cohesion c: tau_eff = sigma sin(b) cos(b) - c
+    - mu sigma sin^2(b), 0 when negative (the crack sticks)."""
     b = np.radians(beta_deg)
-    tau_eff = max(0.0, sigma * np.sin(b) * (np.cos(b) - mu * np.sin(b)))
+    tau_eff = max(0.0, sigma * np.sin(b) * (np.cos(b) - mu * np.sin(b)) - cohesion)
     return 4.0 * (1.0 - nu**2) * tau_eff * np.sqrt(np.clip(a**2 - np.asarray(x) ** 2, 0.0, None)) / E
 
 
-def crack_deck(path, n_half, beta_deg, mu, etype="CPE4", slope=None, width=20.0, ratio=1.15):
+def crack_deck(path, n_half, beta_deg, mu, etype="CPE4", slope=None, width=20.0, ratio=1.15, cohesion=0.0,
+               pair="NODE TO SURFACE, SMALL SLIDING"):
     """A crack along y = 0 from x = -a to a (a = 1) inside the plate [-W, W]^2, W = width a,
     n_half elements along the half-crack (h = a / n_half) and the mesh graded by `ratio`
     beyond [-1.5 a, 1.5 a] x [-0.5 a, 0.5 a].  The crack's faces are the nodes of y = 0
     with |x| < a doubled (the tips shared, as vctools.mesh's joints): the upper face is
     the slave node surface (tips left out), the lower face's element sides the master,
-    NODE TO SURFACE, SMALL SLIDING, HARD; `*FRICTION` mu (with the stick slope when
-    given, else exact stick).  The uniform stress -sigma d d^T, d = (cos b, sin b), is
+    NODE TO SURFACE, SMALL SLIDING, HARD (or `pair`: SURFACE TO SURFACE takes the upper
+    face's element sides as the slave); `*FRICTION` mu (with the stick slope when given,
+    else exact stick; `COHESION=` when cohesion > 0).  The uniform stress -sigma d d^T, d = (cos b, sin b), is
     applied as the consistent nodal forces of its tractions on the four sides; two
     corner nodes hold the rigid motions (the loads balance, so their reactions vanish)."""
     a, sigma = CRACK["a"], CRACK["sigma"]
@@ -105,11 +107,17 @@ def crack_deck(path, n_half, beta_deg, mu, etype="CPE4", slope=None, width=20.0,
     master = [nl - (nx - 1) + i + 1 for i in range(nx - 1) if abs(xs[i] + xs[i + 1]) * 0.5 < a]
     lines += ["*MATERIAL, NAME=ROCK", "*ELASTIC", f"{float(CRACK['E'])!r}, {float(CRACK['nu'])!r}",
               "*SOLID SECTION, ELSET=LOWER, MATERIAL=ROCK", "1.0", "*SOLID SECTION, ELSET=UPPER, MATERIAL=ROCK", "1.0",
-              "*SURFACE, NAME=CRACK_SLAVE, TYPE=NODE"] + [str(v) for v in dup.values()]
+              ]
+    if pair.startswith("SURFACE TO SURFACE"):
+        # the upper row's elements over the crack: their side S1 (nodes 1-2) lies on y = 0
+        lines += ["*SURFACE, NAME=CRACK_SLAVE"] + [f"{e + nx - 1}, S1" for e in master]
+    else:
+        lines += ["*SURFACE, NAME=CRACK_SLAVE, TYPE=NODE"] + [str(v) for v in dup.values()]
     lines += ["*SURFACE, NAME=CRACK_MASTER"] + [f"{e}, S3" for e in master]
     friction = f"{float(mu)!r}" + (f", {float(slope)!r}" if slope is not None else "")
-    lines += ["*SURFACE INTERACTION, NAME=JOINT", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD", "*FRICTION", friction,
-              "*CONTACT PAIR, INTERACTION=JOINT, TYPE=NODE TO SURFACE, SMALL SLIDING", "CRACK_SLAVE, CRACK_MASTER",
+    param = f", COHESION={float(cohesion)!r}" if cohesion > 0.0 else ""
+    lines += ["*SURFACE INTERACTION, NAME=JOINT", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD", f"*FRICTION{param}",
+              friction, f"*CONTACT PAIR, INTERACTION=JOINT, TYPE={pair}", "CRACK_SLAVE, CRACK_MASTER",
               "*BOUNDARY", f"{ids[0, 0]}, 1, 2", f"{ids[0, -1]}, 2, 2"]
     b = np.radians(beta_deg)
     d = np.array([np.cos(b), np.sin(b)])
@@ -151,11 +159,11 @@ def pair_results(h5, step="0001", pair="pair_1"):
     return res, iterations
 
 
-def crack_errors(res, beta_deg, mu):
+def crack_errors(res, beta_deg, mu, cohesion=0.0):
     """Errors of the computed slip against crack_slip: relative error of delta at x = 0
     (delta_max), and the relative L2 error of the profile (tributary-weighted sums over
     the slave nodes)."""
-    exact = crack_slip(res["x"], beta_deg, mu)
+    exact = crack_slip(res["x"], beta_deg, mu, cohesion)
     slip = np.abs(res["CSLIP"])
     i0 = int(np.argmin(np.abs(res["x"])))
     w = res["CNAREA"]
