@@ -70,6 +70,25 @@ def crack_study(exe, work, ns, etypes, widths):
     return rows, stick, profiles
 
 
+def voronoi_study(exe, work, cells_list):
+    """F4 on the mesher's Voronoi cells and joint (crack_voronoi_deck), beta = 30, mu = 0.3."""
+    rows = []
+    for cells in cells_list:
+        path = fc.crack_voronoi_deck(work / f"voronoi_{cells}.inp", cells, 30.0, 0.3)
+        t = time.time()
+        h5 = fc.run(exe, path)
+        wall = time.time() - t
+        res, _ = fc.pair_results(h5)
+        its = max(r["iteration"].size for r in iteration_records(h5))
+        d, l2 = fc.crack_errors(res, 30.0, 0.3)
+        h = np.diff(np.sort(np.r_[res["x"], -1.0, 1.0])).mean()
+        law = np.abs(np.abs(res["CSHEAR"]) - 0.3 * res["CPRESS"]).max()
+        status = "all SLIP" if (res["STATUS"] == 4).all() else "not all SLIP"
+        rows.append(f"| {cells} | {len(res['x'])} | a/{1.0 / h:.0f} | {100 * d:+.2f} % | {100 * l2:.2f} % | {its} | "
+                    f"{status}, law {law:.0e} | {wall:.1f} |")
+    return rows
+
+
 def mindlin_study(exe, work, ns, etypes):
     rows, profiles = [], {}
     for etype in etypes:
@@ -195,7 +214,15 @@ def main():
     ap.add_argument("--quick", action="store_true", help="the coarse meshes only")
     ap.add_argument("--no-figures", action="store_true")
     ap.add_argument("--iterations", action="store_true", help="only the iterations of every increment")
+    ap.add_argument("--voronoi", action="store_true", help="only F4 on the mesher's Voronoi cells")
     args = ap.parse_args()
+    if args.voronoi:
+        with tempfile.TemporaryDirectory() as tmp:
+            print("| cells | slave nodes | mean h along the crack | delta_max error | L2 error | iterations | "
+                  "status | s |\n|---|---|---|---|---|---|---|---|")
+            cells = [500, 1000, 2000] if args.quick else [500, 1000, 2000, 4000, 8000]
+            print("\n".join(voronoi_study(args.exe, pathlib.Path(tmp), cells)))
+        return
     if args.iterations:
         with tempfile.TemporaryDirectory() as tmp:
             print("| deck | increments (with contact) | most iterations | cut-backs |\n|---|---|---|---|")

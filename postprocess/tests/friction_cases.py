@@ -7,6 +7,7 @@ Cattaneo-Mindlin partial slip of a cylinder on a half-plane of the same material
 friction anchors' numbering).  Each deck is a structured mesh of quadrilaterals (CPE4 or
 VPE), graded geometrically away from the contact zone, written with Python floats.
 """
+import pathlib
 import subprocess
 
 import h5py
@@ -300,3 +301,53 @@ def mindlin_errors(res, mu=MINDLIN["mu"]):
     l2p = np.sqrt(np.sum(w * (res["CPRESS"] - p) ** 2) / np.sum(w * p**2))
     return dict(P=P, Q=Q, ratio=Q / (mu * P), a=a, c=c, c_h=c_h, c_err=c_h / c - 1.0, c_fit=c_fit,
                 c_fit_err=c_fit / c - 1.0, l2q=l2q, l2p=l2p)
+
+
+def crack_voronoi_deck(path, cells, beta_deg, mu, width=20.0, seed=3):
+    """F4 on the mesher's Voronoi cells (VPE) and its joint: the plate [-W, W]^2 (W =
+    width a) meshed by vctools.mesh with `cells` cells graded toward the crack (ratio
+    0.03 within 3 a), the crack a [[joint]] from (-a, 0) to (a, 0), both tips inside
+    (CRACK_SLAVE the upper face's nodes, CRACK_MASTER the lower face's sides; the tips
+    shared).  The outer boundary is held at the displacement of the uniform state
+    (plane strain strain of -sigma d d^T), so no rigid motion is left; NODE TO SURFACE,
+    SMALL SLIDING, HARD, exact stick.  Returns the deck's path."""
+    from vctools.mesh.scene import mesh_scene_file
+
+    a, sigma, E, nu = CRACK["a"], CRACK["sigma"], CRACK["E"], CRACK["nu"]
+    W = width * a
+    scene = path.with_suffix(".toml")
+    scene.write_text(f"""[mesh]
+title = "F4 closed crack on Voronoi cells"
+seed = {seed}
+lloyd = 20
+
+[[body]]
+name = "PLATE"
+rectangle = [{-W!r}, {-W!r}, {W!r}, {W!r}]
+mesher = "voronoi"
+cells = {cells}
+grading = [ {{ line = [[{-a!r}, 0.0], [{a!r}, 0.0]], ratio = 0.03, radius = {3.0 * a!r} }} ]
+
+[[joint]]
+name = "CRACK"
+polyline = [[{-a!r}, 0.0], [{a!r}, 0.0]]
+master = "right"
+""")
+    (mesh_path, m), = mesh_scene_file(scene, out=path.with_name(path.stem + "_mesh.inp"), echo=None)
+    xy = m.nodes
+    b = np.radians(beta_deg)
+    d = np.array([np.cos(b), np.sin(b)])
+    s = -sigma * np.outer(d, d)
+    exx = ((1.0 - nu**2) * s[0, 0] - nu * (1.0 + nu) * s[1, 1]) / E
+    eyy = ((1.0 - nu**2) * s[1, 1] - nu * (1.0 + nu) * s[0, 0]) / E
+    gamma = 2.0 * (1.0 + nu) * s[0, 1] / E
+    u = np.column_stack([exx * xy[:, 0] + 0.5 * gamma * xy[:, 1], eyy * xy[:, 1] + 0.5 * gamma * xy[:, 0]])
+    outer = np.flatnonzero(np.isclose(np.abs(xy[:, 0]), W) | np.isclose(np.abs(xy[:, 1]), W))
+    lines = [f"*INCLUDE, INPUT={pathlib.Path(mesh_path).name}", "*MATERIAL, NAME=ROCK", "*ELASTIC",
+             f"{float(E)!r}, {float(nu)!r}", "*SOLID SECTION, ELSET=PLATE, MATERIAL=ROCK", "1.0",
+             "*SURFACE INTERACTION, NAME=JOINT", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD", "*FRICTION",
+             f"{float(mu)!r}", "*CONTACT PAIR, INTERACTION=JOINT, TYPE=NODE TO SURFACE, SMALL SLIDING",
+             "CRACK_SLAVE, CRACK_MASTER", "*STEP", "*STATIC", "*BOUNDARY"]
+    lines += [f"{i + 1}, {k + 1}, {k + 1}, {float(u[i, k])!r}" for i in outer for k in (0, 1)]
+    lines += ["*CONTACT FILE", "CDIS, CSTR", "*END STEP"]
+    return write(path, lines)
