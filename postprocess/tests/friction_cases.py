@@ -207,7 +207,7 @@ def hertz_pressure(x, P, **kw):
 
 
 def mindlin_deck(path, n_a, press=-0.135, shift=0.03, etype="CPE4", width=25.0, ratio=1.15, increments=4,
-                 slope=None):
+                 slope=None, pair="NODE TO SURFACE, SMALL SLIDING"):
     """A cylinder of radius R on a half-plane, both (E, nu), plane strain: the lower body
     [-W, W] x [-W, 0] (bottom held), the upper body [-W, W] x [y(x), W] above the curve
     y = x^2 / (2R) (Hertz's gap: the cylinder's profile near the contact), continued by
@@ -224,7 +224,7 @@ def mindlin_deck(path, n_a, press=-0.135, shift=0.03, etype="CPE4", width=25.0, 
     closed forms evaluated at them.  NODE TO SURFACE, SMALL SLIDING, the upper body's
     bottom the slave (element sides), the flat top of the lower body the master (its
     tangent is x, the direction of Mindlin's shear); the nodes of both faces have the
-    same x."""
+    same x.  `pair` SURFACE TO SURFACE needs VPE (node insertion)."""
     a0 = hertz_half_width(10.0)
     h = a0 / n_a
     W, R = width * a0, MINDLIN["R"]
@@ -259,7 +259,7 @@ def mindlin_deck(path, n_a, press=-0.135, shift=0.03, etype="CPE4", width=25.0, 
     lines += ["*SURFACE, NAME=PLANE_FACE"] + [f"{ne - nx + i + 1}, S3" for i in range(nx)]
     friction = f"{float(MINDLIN['mu'])!r}" + (f", {float(slope)!r}" if slope is not None else "")
     lines += ["*SURFACE INTERACTION, NAME=I", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD", "*FRICTION", friction,
-              "*CONTACT PAIR, INTERACTION=I, TYPE=NODE TO SURFACE, SMALL SLIDING", "CYL_FACE, PLANE_FACE",
+              f"*CONTACT PAIR, INTERACTION=I, TYPE={pair}", "CYL_FACE, PLANE_FACE",
               "*NSET, NSET=BOTTOM"] + [str(n) for n in lid[0]]
     lines += ["*NSET, NSET=TOP"] + [str(n) for n in uid[-1]]
     lines += ["*BOUNDARY", "BOTTOM, 1, 2",
