@@ -199,6 +199,10 @@ def iteration_study(exe, work):
               fc.mindlin_deck(work / "it_mindlin.inp", 10, press=-0.045, shift=0.010)),
              ("F5 with the stick slope 1e4 (10 E), a/10",
               fc.mindlin_deck(work / "it_mindlin_slope.inp", 10, press=-0.045, shift=0.010, slope=1.0e4))]
+    from test_friction_limit import pad_deck
+    pad = pad_deck(work, "*FRICTION\n0.3")
+    pad.write_text(pad.read_text().replace("*STATIC\n", "*STATIC, DIRECT\n0.25, 1.0\n"))
+    decks.append(("F1 pad (test_friction_limit), 3 steps of 4 increments", pad))
     ccx = ROOT / "tests" / "data" / "calculix" / "two_blocks_friction.inp"
     (work / "it_ccx.inp").write_text(ccx.read_text())
     decks.append(("CalculiX two blocks, 5 increments", work / "it_ccx.inp"))
