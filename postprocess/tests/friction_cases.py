@@ -206,7 +206,7 @@ def hertz_pressure(x, P, **kw):
     return 2.0 * P / (np.pi * a) * np.sqrt(np.clip(1.0 - (np.asarray(x) / a) ** 2, 0.0, None))
 
 
-def mindlin_deck(path, n_a, press=-0.135, shift=0.03, etype="CPE4", width=25.0, ratio=1.15, increments=4,
+def mindlin_deck(path, n_a, press=-0.045, shift=0.010, etype="CPE4", width=25.0, ratio=1.15, increments=4,
                  slope=None, pair="NODE TO SURFACE, SMALL SLIDING"):
     """A cylinder of radius R on a half-plane, both (E, nu), plane strain: the lower body
     [-W, W] x [-W, 0] (bottom held), the upper body [-W, W] x [y(x), W] above the curve
@@ -214,11 +214,12 @@ def mindlin_deck(path, n_a, press=-0.135, shift=0.03, etype="CPE4", width=25.0, 
     its tangent beyond |x| = 4 a0 (never in contact); W = width a0.  The upper body's top
     is moved as a rigid face (no rotation): step 1 down by -press (HARD contact,
     *FRICTION mu, exact stick or the stick slope), step 2 along x by `shift` in
-    `increments` fixed increments, the vertical displacement kept.  R = 100 makes
-    a0 / R = 0.015 (a0 = 1.522, Hertz's half-width at P = 10): Hertz's and Mindlin's
-    half-plane theory neglects the surface's slope, and the normal traction on the
-    curved face has a tangential part of about p x / R, which friction locks in while
-    pressing (measured 3 % of mu p0 at a0 / R = 0.048, R = 10).  Element size
+    `increments` fixed increments, the vertical displacement kept (the defaults give
+    P = 9.89, Q / (mu P) = 0.50).  R = 1000 makes a0 / R = 0.005 (a0 = 4.814, Hertz's
+    half-width at P = 10): Hertz's and Mindlin's half-plane theory neglects the
+    surface's slope, and the normal traction on the curved face has a tangential part
+    of about p x / R, which friction locks in while pressing (measured 0.6 % of mu p0
+    at a0 / R = 0.005, 3 % at 0.048, R = 10).  Element size
     h = a0 / n_a on |x| <= 1.6 a0, graded by `ratio` beyond and below.  The contact
     resultants P and Q are measured (sums of CPRESS and CSHEAR times CNAREA) and the
     closed forms evaluated at them.  NODE TO SURFACE, SMALL SLIDING, the upper body's
