@@ -169,7 +169,7 @@ def hertz_variant(exe, tmp_path, name, mu=None, block_e=None):
 def test_hertz_with_friction(exe, tmp_path):
     """The paper's Hertz case (disc E = 1e3 on a block E = 1e6) with mu = 0.3: the disc's
     surface, pulled outward by its Poisson expansion, is held by the stiff block, so
-    friction raises the peak pressure (measured +5.5 %, 84.10 -> 88.69; Dundurs' beta =
+    friction raises the peak pressure (measured +5.5 %, 84.10 -> 88.69; Dundurs' |beta| =
     0.29 couples the shear to the pressure).  With the block of the disc's material
     (beta = 0) friction leaves the pressure unchanged: measured +1.3e-4 (the disc is
     not a half-plane, so a small shear, 4 % of the peak, remains in stick); asserted
