@@ -110,7 +110,7 @@ def mindlin_study(exe, work, ns, etypes):
         for i, (n, nu, e, its, wall, h) in enumerate(errs):
             rows.append(f"| {etype} | a/{n} | {nu} | {e['P']:.3f} | {e['ratio']:.3f} | {e['c'] / e['a']:.4f} | "
                         f"{e['c_h'] / e['a']:.4f} | {100 * e['c_err']:+.2f} % ({(e['c_h'] - e['c']) / h:+.2f} h) | "
-                        f"{100 * e['c_fit_err']:+.2f} % | "
+                        f"{100 * e['c_fit_err']:+.2f} % | {100 * e['l2s']:.2f} % | {e['stick_slip']:.0e} | "
                         f"{100 * e['l2q']:.2f} % | {oq[i]} | {100 * e['l2p']:.2f} % | {op[i]} | {its} | {wall:.1f} |")
     return rows, profiles
 
@@ -249,8 +249,8 @@ def main():
         mrows, mprof = mindlin_study(args.exe, work, ns_mindlin, ["CPE4", "VPE"])
         print("\n### F5 Cattaneo-Mindlin\n")
         print("| element | h | unknowns | P | Q/(mu P) | c/a exact | c/a from status | its error | c from tractions, "
-              "error | L2 q | order | L2 p | order | iterations | s |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+              "error | L2 slip | stick slip | L2 q | order | L2 p | order | iterations | s |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         print("\n".join(mrows))
         hrows = hertz_study(args.exe, work, ["389_fem", "1155_fem", "600_vem"])
         print("\n### Hertz with friction (mu = 0.3, exact stick)\n")

@@ -200,6 +200,21 @@ def mindlin_shear(x, P, Q, mu=MINDLIN["mu"], **kw):
     return np.sign(Q) * q, c, a
 
 
+def mindlin_slip(x, P, Q, mu=MINDLIN["mu"], E=MINDLIN["E"], nu=MINDLIN["nu"], **kw):
+    """Cattaneo-Mindlin's relative slip |s(x)| of the surfaces: 0 in the stick zone, and
+    (mu p0 / (a E*)) [|x| sqrt(x^2 - c^2) - c^2 ln((|x| + sqrt(x^2 - c^2)) / c)] for
+    c <= |x| <= a (the friction anchors' 1b, derived there and checked numerically)."""
+    _, c, a = mindlin_shear(x, P, Q, mu, E=E, nu=nu, **kw)
+    estar = E / (2.0 * (1.0 - nu**2))
+    p0 = 2.0 * P / (np.pi * a)
+    ax = np.abs(np.asarray(x, dtype=float))
+    s = np.zeros_like(ax)
+    z = (ax > c) & (ax <= a)
+    r = np.sqrt(ax[z] ** 2 - c**2)
+    s[z] = mu * p0 / (a * estar) * (ax[z] * r - c**2 * np.log((ax[z] + r) / c))
+    return s
+
+
 def hertz_pressure(x, P, **kw):
     """Hertz's pressure p(x) = p0 sqrt(1 - x^2/a^2), p0 = 2 P / (pi a)."""
     a = hertz_half_width(P, **kw)
@@ -271,11 +286,14 @@ def mindlin_deck(path, n_a, press=-0.045, shift=0.010, etype="CPE4", width=25.0,
     return write(path, lines)
 
 
-def mindlin_errors(res, mu=MINDLIN["mu"]):
+def mindlin_errors(res, mu=MINDLIN["mu"], slope=None):
     """From the slave nodes' results of the shear step: the measured P, Q; the stick
     half-width c_h (midway between the outermost STICK node and the next node, averaged
     over both sides) and the closed form's c (at the measured P, Q); the relative L2
-    error of CSHEAR against q(x) (tributary-weighted), and of CPRESS against Hertz."""
+    error of CSHEAR against q(x) (tributary-weighted), of CPRESS against Hertz and of
+    |CSLIP| against Mindlin's slip (with a stick slope, less the elastic slip
+    |CSHEAR| / slope that CSLIP includes and the theory has not); the largest |CSLIP|
+    of a sticking node."""
     w = res["CNAREA"]
     P = float(np.sum(res["CPRESS"] * w))
     Q = float(np.sum(res["CSHEAR"] * w))
@@ -295,13 +313,22 @@ def mindlin_errors(res, mu=MINDLIN["mu"]):
     # tractions rather than from the statuses
     inner = stick & (np.abs(x) < np.abs(x[stick]).max() - 1e-12)
     g = (mu * res["CPRESS"][inner] - np.abs(res["CSHEAR"][inner])) ** 2
-    slope, icept = np.polyfit(x[inner] ** 2, g, 1)
-    c_fit = np.sqrt(-icept / slope)
+    fit_slope, fit_icept = np.polyfit(x[inner] ** 2, g, 1)
+    c_fit = np.sqrt(-fit_icept / fit_slope)
     l2q = np.sqrt(np.sum(w * (res["CSHEAR"] - q) ** 2) / np.sum(w * q**2))
     p = hertz_pressure(x, P)
     l2p = np.sqrt(np.sum(w * (res["CPRESS"] - p) ** 2) / np.sum(w * p**2))
+    # the slip (CSLIP: the paired nodes' relative tangential displacement) inside the
+    # theory's contact |x| <= a (a node closed beyond it has no closed-form slip)
+    inside = (res["STATUS"] >= 3) & (np.abs(x) <= a)
+    s = mindlin_slip(x, P, Q, mu)
+    slip = np.abs(res["CSLIP"])
+    if slope is not None:
+        slip = slip - np.abs(res["CSHEAR"]) / slope
+    l2s = np.sqrt(np.sum((w * (slip - s) ** 2)[inside]) / np.sum((w * s**2)[inside]))
     return dict(P=P, Q=Q, ratio=Q / (mu * P), a=a, c=c, c_h=c_h, c_err=c_h / c - 1.0, c_fit=c_fit,
-                c_fit_err=c_fit / c - 1.0, l2q=l2q, l2p=l2p)
+                c_fit_err=c_fit / c - 1.0, l2q=l2q, l2p=l2p, l2s=l2s, stick_slip=slip[stick].max(),
+                edge_slip=s.max())
 
 
 def crack_voronoi_deck(path, cells, beta_deg, mu, width=20.0, seed=3):
