@@ -229,7 +229,8 @@ def mindlin_deck(path, n_a, press=-0.045, shift=0.010, etype="CPE4", width=25.0,
     its tangent beyond |x| = 4 a0 (never in contact); W = width a0.  The upper body's top
     is moved as a rigid face (no rotation): step 1 down by -press (HARD contact,
     *FRICTION mu, exact stick or the stick slope), step 2 along x by `shift` in
-    `increments` fixed increments, the vertical displacement kept (the defaults give
+    `increments` fixed increments, the vertical displacement kept (contact results and
+    iteration records of every increment: FREQUENCY=1; the defaults give
     P = 9.89, Q / (mu P) = 0.50).  R = 1000 makes a0 / R = 0.005 (a0 = 4.814, Hertz's
     half-width at P = 10): Hertz's and Mindlin's half-plane theory neglects the
     surface's slope, and the normal traction on the curved face has a tangential part
@@ -280,7 +281,7 @@ def mindlin_deck(path, n_a, press=-0.045, shift=0.010, etype="CPE4", width=25.0,
     lines += ["*NSET, NSET=TOP"] + [str(n) for n in uid[-1]]
     lines += ["*BOUNDARY", "BOTTOM, 1, 2",
               "*STEP", "*STATIC", "*BOUNDARY", "TOP, 1, 1, 0.0", f"TOP, 2, 2, {float(press)!r}",
-              "*CONTACT FILE", "CDIS, CSTR", "*END STEP",
+              "*CONTACT FILE, FREQUENCY=1", "CDIS, CSTR", "*END STEP",
               "*STEP", "*STATIC, DIRECT", f"{float(1.0 / increments)!r}, 1.0", "*BOUNDARY",
               f"TOP, 1, 1, {float(shift)!r}", f"TOP, 2, 2, {float(press)!r}", "*END STEP"]
     return write(path, lines)

@@ -54,3 +54,24 @@ def assert_rf_balanced(h5_path, rtol=1e-8):
             if not np.any(load) and scale < 1e-10:
                 continue
             assert np.abs(rf + load).max() <= rtol * scale, (h5_path, key, rf, load)
+
+
+def increment_iterations(h5_path):
+    """The contact iterations of every increment that the file holds records of, per
+    step in step order: the frames' (/increments/NNNN/MMMM/contact/iterations, written
+    with FREQUENCY=n) in increment order, then the step's end (/steps/NNNN, its last
+    increment)."""
+    out = []
+    with h5py.File(h5_path, "r") as f:
+        for key in sorted(f["steps"]):
+            counts = []
+            frames = f.get(f"increments/{key}")
+            for m in sorted(frames) if frames is not None else []:
+                g = frames[m].get("contact/iterations")
+                if g is not None:
+                    counts.append(int(np.array(g["iteration"]).size))
+            g = f["steps"][key].get("contact/iterations")
+            if g is not None:
+                counts.append(int(np.array(g["iteration"]).size))
+            out.append(counts)
+    return out

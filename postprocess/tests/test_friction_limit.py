@@ -24,7 +24,7 @@ import h5py
 import numpy as np
 import pytest
 
-from h5results import iteration_records
+from h5results import increment_iterations, iteration_records
 
 E, NU, G, TAN_A, MU, PUSH = 1.0e3, 0.3, 10.0, 0.1, 0.3, 0.05
 
@@ -185,7 +185,8 @@ def test_stick_slip_threshold(exe, tmp_path, increments):
     step to step gives the same answer (measured: equal to 1e-12)."""
     path = pad_deck(tmp_path, "*FRICTION\n0.3")
     if increments:
-        path.write_text(path.read_text().replace("*STATIC\n", "*STATIC, DIRECT\n0.25, 1.0\n"))
+        # every increment's contact iterations in the file (frames, FREQUENCY=1)
+        path.write_text(path.read_text().replace("*STATIC\n", "*STATIC, DIRECT\n0.25, 1.0\n*CONTACT FILE, FREQUENCY=1\nCDIS, CSTR\n"))
     out = tmp_path / "o"
     r = subprocess.run([exe, "-q", "-o", str(out), str(path)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
@@ -208,3 +209,7 @@ def test_stick_slip_threshold(exe, tmp_path, increments):
     slip = np.abs(res[2]["CSLIP"]).mean()
     assert abs(slip / 9.0 - 1.0) <= 1e-2, slip
     assert max(int(rec["iteration"].size) for rec in iteration_records(h5)) <= 10
+    if increments:
+        # at most 10 in every increment (measured 6), no cut-back (4 per step)
+        counts = increment_iterations(h5)
+        assert [len(c) for c in counts] == [4, 4, 4] and max(max(c) for c in counts) <= 10, counts

@@ -740,9 +740,11 @@ contains
             if (allocated(error)) return
          end do
       end associate
-      if (frame > 0) return
+      ! the contact iterations of the increment just solved: a frame's own, and at the
+      ! step's end those of its last increment
       call rs%h5%write_iterations(istep, rs%sys%records, error)
       if (allocated(error)) return
+      if (frame > 0) return
       write (buf, '(2x,a,i0,a,i0,a,es12.4,a,es12.4)') 'contact: ', count(rs%contact%active), ' of ', rs%contact%n, &
          ' slave nodes closed, max pressure ', rs%contact%max_pressure(), ', max penetration ', &
          rs%contact%max_penetration()
