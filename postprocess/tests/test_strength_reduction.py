@@ -118,15 +118,23 @@ def limit_equilibrium(h5, cohesion=0.0):
 @pytest.mark.parametrize("hard", [False, True], ids=["LINEAR", "HARD"])
 @pytest.mark.parametrize("uplift", [False, True], ids=["dry", "uplift"])
 def test_factor_matches_limit_equilibrium(exe, tmp_path, pair, hard, uplift):
-    """c = 0: F = (W - U) tan(phi)/H within 0.5 % (the bracket is 1e-3 wide)."""
-    h5, _ = run(exe, dam_deck(tmp_path / "dam.inp", pair=pair, hard=hard, uplift=uplift), tmp_path)
-    want, fs, srm, closed = limit_equilibrium(h5)
-    assert closed, "the base stays closed (the limit-equilibrium formula applies)"
-    assert abs(fs / want - 1) <= 5e-3, (fs, want)
-    # the factor is the last converged trial, the next failed one within the tolerance
-    assert srm["F_lower"] == fs and srm["F_upper"] > fs
-    assert (srm["F_upper"] - srm["F_lower"]) <= srm["tolerance"] * srm["F_lower"]
-    assert srm["converged"][0] == 1 and srm["F"][0] == 1.0
+    """c = 0: F = (W - U) tan(phi)/H within 0.5 % (the bracket is 1e-3 wide), by the
+    probes around the estimate of the trial at F = 1 (the default) and by the doubling
+    bracket and bisection from a first trial of 1.5 (the data line), which never uses
+    the estimate."""
+    for tag, data in (("probe", None), ("bisect", "1.5, 100.")):
+        (tmp_path / tag).mkdir()
+        h5, _ = run(exe, dam_deck(tmp_path / tag / "dam.inp", pair=pair, hard=hard, uplift=uplift, srm_data=data),
+                    tmp_path / tag)
+        want, fs, srm, closed = limit_equilibrium(h5)
+        assert closed, "the base stays closed (the limit-equilibrium formula applies)"
+        assert abs(fs / want - 1) <= 5e-3, (tag, fs, want)
+        # the factor is the last converged trial, the next failed one within the tolerance
+        assert srm["F_lower"] == fs and srm["F_upper"] > fs
+        assert (srm["F_upper"] - srm["F_lower"]) <= srm["tolerance"] * srm["F_lower"]
+        assert srm["converged"][0] == 1 and srm["F"][0] == 1.0
+        if data is not None:
+            assert srm["F"][1] == 1.5
 
 
 def test_cohesion_uncracked(exe, tmp_path):
