@@ -259,3 +259,16 @@ def test_first_step_and_no_friction(exe, tmp_path):
                     .replace("BASENODES, 1, 2", "BASENODES, 1, 2\n1, 1"))
     _, r = run(exe, deck, tmp_path, code=1)
     assert "frictionless.inp:" in r.stderr and "no surface interaction has friction to reduce" in r.stderr
+
+
+def test_rerun_removes_stale_tables(exe, tmp_path):
+    """JOB_srm_NNNN.csv is one of the job's results: a rerun removes an earlier run's
+    (a step that no longer exists) and its leftover temporaries, and writes its own."""
+    deck = dam_deck(tmp_path / "dam.inp")
+    (tmp_path / "dam_srm_0007.csv").write_text("left by an earlier run")
+    (tmp_path / ".dam_srm_0003.csv.AAAAAAAAAAAA.tmp").write_text("left by a killed run")
+    (tmp_path / "dam_srm_notes.csv").write_text("not a result name: kept")
+    run(exe, deck, tmp_path)
+    names = os.listdir(tmp_path)
+    assert "dam_srm_0007.csv" not in names and ".dam_srm_0003.csv.AAAAAAAAAAAA.tmp" not in names
+    assert "dam_srm_notes.csv" in names and "dam_srm_0003.csv" in names

@@ -34,6 +34,7 @@ module vemcontact_driver_strength_reduction
    use vemcontact_driver_load_state, only: load_state_t
    use vemcontact_driver_srm_search, only: srm_search_t, srm_slides, srm_unbounded
    use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_iteration, only: iteration_record_t
    use vemcontact_contact_tangential, only: make_law
    use vemcontact_log, only: logger_t
    use vemcontact_interrupt, only: is_interrupt
@@ -102,6 +103,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(srm_search_t) :: search
       type(contact_state_t) :: base, best
+      type(iteration_record_t), allocatable :: records(:)
       real(wp), allocatable :: u_base(:), u_best(:)
       real(wp) :: f, scale, uc
       logical :: ok
@@ -142,6 +144,7 @@ contains
          if (ok) then
             u_best = u
             best = contact
+            records = sys%records
          end if
       end do
       if (search%phase == srm_slides) then
@@ -154,6 +157,8 @@ contains
       end if
       u = u_best
       contact = best
+      ! the iteration records of the step: those of the state it reports
+      sys%records = records
       res%f_lower = search%f_ok
       res%f_upper = search%f_fail
       if (search%phase == srm_unbounded) res%f_upper = huge(1.0_wp)
