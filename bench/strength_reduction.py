@@ -60,9 +60,9 @@ def one(exe, deck, work, first=None):
         trials, iters = len(g["F"]), int(g["iterations"][:].sum())
         res_iters = len(f["steps/0002/contact/iterations/iteration"])
         width = (float(g.attrs["F_upper"]) - float(g.attrs["F_lower"])) / float(g.attrs["F_lower"])
-    return dict(deck=deck, fs=fs, width=width, trials=trials, iterations=iters, reservoir_iterations=res_iters,
-                reservoir_s=reservoir, srm_s=srm, step2_s=step2, step3_s=step3,
-                ratio=srm / reservoir)
+    return {"deck": deck, "fs": fs, "width": width, "trials": trials, "iterations": iters,
+            "reservoir_iterations": res_iters, "reservoir_s": reservoir, "srm_s": srm, "step2_s": step2,
+            "step3_s": step3, "ratio": srm / reservoir}
 
 
 def main(argv):

@@ -245,10 +245,10 @@ contains
          end do
          ! a pair whose shear cancels to round-off carries none
          if (.not. (abs(shear) > 1.0e-9_wp*scale .and. strength > 0.0_wp)) cycle
-         if (r == 0.0_wp) then
-            r = strength/abs(shear)
-         else
+         if (r > 0.0_wp) then
             r = min(r, strength/abs(shear))
+         else
+            r = strength/abs(shear)
          end if
       end do
    end function mobilized_ratio
