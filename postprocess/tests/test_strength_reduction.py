@@ -243,6 +243,14 @@ def test_input_errors(exe, tmp_path, srm, data, extra, message):
     assert "bad.inp:" in r.stderr and "Backtrace" not in r.stderr
 
 
+def test_interaction_without_friction(exe, tmp_path):
+    """INTERACTION= naming an interaction without friction to reduce: exit 1, file:line."""
+    deck = dam_deck(tmp_path / "smooth.inp", srm="*STRENGTH REDUCTION, INTERACTION=SMOOTH",
+                    model_extra="*SURFACE INTERACTION, NAME=SMOOTH\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD")
+    _, r = run(exe, deck, tmp_path, code=1)
+    assert "smooth.inp:" in r.stderr and "surface interaction SMOOTH has no friction to reduce" in r.stderr, r.stderr
+
+
 def test_first_step_and_no_friction(exe, tmp_path):
     """In the first step (no state to reduce), outside a step, without friction: exit 1."""
     deck = tmp_path / "first.inp"
