@@ -103,7 +103,7 @@ WEDGE_TEXT = {
 }
 
 
-def two_wedge_deck(variant: str, phi: float = 35.0, c_seam: float = 0.0, srm: bool = True) -> str:
+def two_wedge_deck(variant: str, phi: float = 45.0, c_seam: float = 0.0, srm: bool = True) -> str:
     mu = math.tan(math.radians(phi))
     L = [
         "** Sliding safety, docs/sliding-safety.md: the dam of example 4 bonded on an upstream rock",

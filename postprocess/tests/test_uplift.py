@@ -36,11 +36,14 @@ RHO = 2400.0       # concrete, kg/m^3 (ssnp142)
 
 
 def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, water=None, uplift=None,
-               two_steps=False, etype="CPE4", pair="NODE TO SURFACE, SMALL SLIDING", extra=None):
+               two_steps=False, etype="CPE4", pair="NODE TO SURFACE, SMALL SLIDING", extra=None, friction=None,
+               after=None):
     """A deck of the quadrilateral block `poly` = heel, toe, top right, top left
     (heel at (0, 0), toe at (B, 0), upstream face x = 0) meshed nx x ny CPE4 on a rigid
     base strip; `water` = reservoir depth on the upstream face (None: dry); `uplift` =
-    the *UPLIFT text (keyword line and data lines) or None."""
+    the *UPLIFT text (keyword line and data lines) or None; `friction` = the *FRICTION
+    lines of the joint (then the base is not held horizontally: the friction carries the
+    thrust); `after` = the text of further steps."""
     p = np.asarray(poly, float)
     nodes, elems = [], []
 
@@ -83,8 +86,10 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
         L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD"]
     else:
         L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{float(penalty)!r}"]
+    if friction is not None:
+        L += [friction]
     L += [f"*CONTACT PAIR, INTERACTION=JOINT, TYPE={pair}", "SLAVE, MASTER",
-          "*BOUNDARY", "BASENODES, 1, 2", "FOOT, 1"]
+          "*BOUNDARY", "BASENODES, 1, 2"] + (["FOOT, 1"] if friction is None else [])
     step = ["*STEP", "*STATIC", "*DLOAD", f"BLOCK, GRAV, {float(G)!r}, 0., -1."]
     if two_steps:
         L += step + ["*END STEP"]
@@ -96,6 +101,8 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
     if extra is not None:
         step += [extra]
     L += step + ["*END STEP"]
+    if after is not None:
+        L += [after]
     path.write_text("\n".join(L) + "\n")
     return path
 
@@ -252,6 +259,46 @@ def test_pressure_penetration_matches_gravity_method(exe, tmp_path, nx):
     h50, _ = run(exe, block_deck(tmp_path / "lin.inp", SSNP142, nx, 20, water=9.0, uplift=up0), tmp_path)
     c0 = pair(h50)
     assert np.argmax(c0["STATUS"] == 1) < k
+
+
+MOHR_COULOMB = "*FRICTION, COHESION=100000.\n1.0"     # phi = 45 deg, c = 100 kPa
+
+
+def penetration_on_friction(exe, tmp_path, nx, after=None):
+    """ssnp142 with pressure penetration on a Mohr-Coulomb joint (phi = 45 deg, c = 100 kPa)
+    instead of the horizontal hold: the friction carries the reservoir's thrust."""
+    up = "*UPLIFT, INTERACTION=JOINT, UNIT WEIGHT=9810, PENETRATION\n0., 0., 9.\n5., 0., 0."
+    deck = block_deck(tmp_path / "ppf.inp", SSNP142, nx, 20, water=9.0, uplift=up, friction=MOHR_COULOMB,
+                      after=after)
+    return run(exe, deck, tmp_path)
+
+
+@pytest.mark.parametrize("nx", [20, 40])
+def test_pressure_penetration_on_a_frictional_joint(exe, tmp_path, nx):
+    """The same crack as with the hold (within a mesh cell of the gravity method) when a
+    Mohr-Coulomb joint carries the thrust: the shear acts at base level, so the moment
+    balance, and with it the no-tension crack, are the gravity method's.  The joint's shear
+    resultant is the reservoir's thrust, and the water is the full head over the open part
+    and the distribution restarted at the tip beyond."""
+    h5, log = penetration_on_friction(exe, tmp_path, nx)
+    c = pair(h5)
+    x = c["coordinates"][:, 0]
+    closed = c["STATUS"] != 0
+    k = np.argmax(closed)
+    assert k > 0 and closed[k:].all(), "one crack from the heel, closed beyond it"
+    assert set(np.unique(c["STATUS"][k:])) <= {3, 4}, "closed nodes stick or slip"
+    a_fe = x[k - 1]
+    assert abs(a_fe - gravity_method_crack(SSNP142, 9.0, 5.0)) <= 5.0 / nx, a_fe
+    assert np.allclose(c["CFLUIDP"][:k], GW * 9.0, rtol=1e-13)
+    assert np.allclose(c["CFLUIDP"][k:], GW * 9.0 * (5.0 - x[k:]) / (5.0 - a_fe), rtol=1e-12, atol=1e-9)
+    # horizontal equilibrium of the block: the shear resultant is the thrust H, to the
+    # contact iteration's residual (1e-10 of the forces); 1e-8
+    thrust = 0.5 * GW * 9.0**2
+    assert abs(np.sum(c["CSHEAR"] * c["CNAREA"])) == pytest.approx(thrust, rel=1e-8)
+    # nodes within the strength: |CSHEAR| <= c + mu CPRESS.  CSHEAR is the force the
+    # balance leaves at the node, which meets the law's bound to the iteration's
+    # tolerance: measured 4.9e-7 above it at the crack-tip node (nx = 40); 1e-6
+    assert (np.abs(c["CSHEAR"][k:]) <= (1.0e5 + c["CPRESS"][k:]) * (1 + 1e-6)).all()
 
 
 def test_crack_past_the_drains(exe, tmp_path):
