@@ -10,7 +10,7 @@ module vemcontact_model
    public :: model_t, named_set_t, material_t, section_t, step_t
    public :: dof_value_t, dload_t, string_t, source_loc_t
    public :: surface_t, interaction_t, contact_pair_t, contact_controls_t, output_request_t
-   public :: uplift_t
+   public :: uplift_t, strength_reduction_t
    public :: find_set, location_string, output_requested, element_order, element_side
    public :: amplitude_t
    public :: equation_t, tie_t
@@ -43,6 +43,8 @@ module vemcontact_model
    !> Step procedures
    integer, parameter, public :: procedure_static = 1
    integer, parameter, public :: procedure_geostatic = 2 !< *GEOSTATIC: displacements reset to zero after it
+   !> *STRENGTH REDUCTION (vemcontact): the factor of safety of the previous step's state
+   integer, parameter, public :: procedure_strength_reduction = 3
    !> Output request categories (output_request_t%category)
    integer, parameter, public :: output_node = 1     !< *NODE FILE, *NODE OUTPUT, *NODE PRINT
    integer, parameter, public :: output_element = 2  !< *EL FILE, *ELEMENT OUTPUT, *EL PRINT
@@ -263,6 +265,20 @@ module vemcontact_model
       type(source_loc_t) :: loc
    end type uplift_t
 
+   !> *STRENGTH REDUCTION's parameters (docs/sliding-safety.md, "Factor of safety by
+   !> strength reduction"): the friction of `interaction` (0: of every interaction with
+   !> Coulomb/Mohr-Coulomb *FRICTION) is divided by trial factors F from f_first up to
+   !> f_max until no equilibrium exists, located to the relative `tolerance`; the
+   !> characteristic displacement is the largest |U - U_start| of node set `nset`
+   !> (0: of every node).
+   type :: strength_reduction_t
+      integer :: interaction = 0
+      integer :: nset = 0
+      real(wp) :: tolerance = 1.0e-3_wp
+      real(wp) :: f_first = 1.5_wp
+      real(wp) :: f_max = 100.0_wp
+   end type strength_reduction_t
+
    !> One *STEP.  Loads follow CalculiX: with OP=MOD (default) a step's entries
    !> replace those of earlier steps on the same dof/element and keep the rest;
    !> OP=NEW on a keyword first removes everything of that kind from earlier steps.
@@ -276,6 +292,8 @@ module vemcontact_model
       !> *STATIC, DIRECT: fixed increments dt_initial, no cut-back (the last increment
       !> ends the step: shorter when dt_initial does not divide the period)
       logical :: direct = .false.
+      !> *STRENGTH REDUCTION's parameters (procedure_strength_reduction)
+      type(strength_reduction_t) :: srm
       !> *STEP, AMPLITUDE=RAMP (the default of *STATIC: loads and prescribed
       !> displacements go linearly from their values at the end of the previous step to
       !> the step's values) or AMPLITUDE=STEP (.false.: the step's values at once;

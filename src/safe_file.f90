@@ -318,7 +318,7 @@ contains
    !> Remove the result files of `job` in folder `dir` left by an earlier run
    !> (JOB.pvd, JOB.h5, JOB.mtx, JOB_NNNN.vtu, JOB_contact_NNNN.vtu, the increments'
    !> JOB_NNNN_MMMM.vtu and JOB_contact_NNNN_MMMM.vtu,
-   !> JOB_contact_pairK_NNNN.csv, JOB_print_NNNN.csv, JOB_phases.csv and
+   !> JOB_contact_pairK_NNNN.csv, JOB_print_NNNN.csv, JOB_srm_NNNN.csv, JOB_phases.csv and
    !> temporaries of them), so that none can be taken for this run's.  `nremoved` counts them.
    subroutine remove_job_files(dir, job, nremoved, error)
       character(len=*), intent(in) :: dir, job

@@ -188,7 +188,7 @@ static int frame_digits(const char *s, size_t n) {
 /* True when `name` is one of job's result files: JOB.pvd, JOB.h5, JOB.xdmf, JOB.mtx,
  * JOB_NNNN.vtu, JOB_contact_NNNN.vtu (and the increments' JOB_NNNN_MMMM.vtu,
  * JOB_contact_NNNN_MMMM.vtu), JOB_contact_pairK_NNNN.csv, JOB_print_NNNN.csv,
- * JOB_phases.csv. */
+ * JOB_srm_NNNN.csv, JOB_phases.csv. */
 static int is_job_result(const char *name, size_t n, const char *job) {
     size_t j = strlen(job);
     const char *r;
@@ -210,6 +210,8 @@ static int is_job_result(const char *name, size_t n, const char *job) {
     }
     if (m > 10 && memcmp(r + m - 4, ".csv", 4) == 0 && memcmp(r, "print_", 6) == 0)
         return digits(r + 6, m - 10);
+    if (m > 8 && memcmp(r + m - 4, ".csv", 4) == 0 && memcmp(r, "srm_", 4) == 0)
+        return digits(r + 4, m - 8);
     if (m > 4 && memcmp(r + m - 4, ".csv", 4) == 0 && m > 12 && memcmp(r, "contact_pair", 12) == 0) {
         const char *p = r + 12, *end = r + m - 4;
         const char *us = memchr(p, '_', (size_t)(end - p));

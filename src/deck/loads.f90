@@ -6,7 +6,8 @@
 module vemcontact_deck_loads
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, step_t, dof_value_t, dload_t, dload_grav, dload_pressure, &
-                               dload_hydrostatic, procedure_static, procedure_geostatic, element_order
+                               dload_hydrostatic, procedure_static, procedure_geostatic, element_order, &
+                               procedure_strength_reduction
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, step_acc_t, grav_ref_t, here, &
                                     err_here, refuse_here, err_at, warn_here, field, get_int, get_real, push_item, push_dof, &
                                     push_dload, node_index, elem_index, get_set, set_suggestion, &
@@ -520,6 +521,7 @@ contains
       if (p%procedure_seen) then
          other = '*STATIC'
          if (p%cur%procedure == procedure_geostatic) other = '*GEOSTATIC'
+         if (p%cur%procedure == procedure_strength_reduction) other = '*STRENGTH REDUCTION'
          if (other == kname) then
             call err_here(p, 'second '//kname//' in the step started at '//loc_str(p, p%step_loc), one)
          else
@@ -663,6 +665,11 @@ contains
          call err_at(p, p%step_loc, 'the step has no procedure', &
                      'add *STATIC inside the step (or *GEOSTATIC, in the first step only)')
       end if
+      if (p%cur%procedure == procedure_strength_reduction .and. p%cur%load_loc%line > 0) then
+         call err_at(p, p%cur%load_loc, p%cur%load_kw//' in a *STRENGTH REDUCTION step', &
+                     'a strength reduction step keeps the loads of the step before it; change loads in a '// &
+                     '*STATIC step before the *STRENGTH REDUCTION step')
+      end if
       if (.not. allocated(model%steps)) allocate (model%steps(4))
       if (p%nstep == size(model%steps)) then
          allocate (t(2*p%nstep))
@@ -707,6 +714,7 @@ contains
       b%dt_min = a%dt_min
       b%dt_max = a%dt_max
       b%direct = a%direct
+      b%srm = a%srm
       b%ramp = a%ramp
       b%boundary_new = a%boundary_new
       b%cload_new = a%cload_new
@@ -732,6 +740,7 @@ contains
       s%dt_min = acc%dt_min
       s%dt_max = acc%dt_max
       s%direct = acc%direct
+      s%srm = acc%srm
       ! *GEOSTATIC applies its loads at once (one increment)
       s%ramp = acc%ramp .and. acc%procedure /= procedure_geostatic
       s%boundary_new = acc%bnew

@@ -4,7 +4,7 @@
 !> next line it can make sense of, so one run reports all problems of a deck.
 module vemcontact_deck_parser
    use vemcontact_model, only: model_t, output_node, output_element, output_contact
-   use vemcontact_deck_state, only: deck_parser_t, err_here, refuse_here
+   use vemcontact_deck_state, only: deck_parser_t, err_here, refuse_here, here
    use vemcontact_deck_source, only: line_keyword, line_data, line_eof
    use vemcontact_deck_fields, only: keyword_line_t, parse_keyword_line
    use vemcontact_deck_registry, only: keywords, find_keyword, keyword_suggestion, is_calculix_keyword, &
@@ -19,7 +19,8 @@ module vemcontact_deck_parser
                                        kw_contact_print, kw_node_output, kw_element_output, kw_contact_output, &
                                        kw_output, kw_uplift, kw_equation, kw_part, kw_end_part, kw_assembly, &
                                        kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
-                                       kw_initial_conditions, kw_temperature, kw_expansion, kw_tie, kw_amplitude, kw_friction
+                                       kw_initial_conditions, kw_temperature, kw_expansion, kw_tie, kw_amplitude, kw_friction, &
+                                       kw_strength_reduction
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
@@ -34,6 +35,7 @@ module vemcontact_deck_parser
    use vemcontact_deck_amplitude, only: read_amplitude, load_amplitude
    use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_uplift, only: read_uplift
+   use vemcontact_deck_strength_reduction, only: read_strength_reduction
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
                                       read_contact_pair, read_controls, read_friction
    implicit none
@@ -94,6 +96,7 @@ contains
             call skip_data(p)
             cycle
          end if
+         if (p%in_step) call note_load(p, id)
          if (p%cur_part > 0) call qualify_set_names(p, kw)
          if (id == kw_nset .or. id == kw_elset) then
             call instance_offsets(p, kw, ok)
@@ -145,6 +148,8 @@ contains
             call read_procedure(p, .false., model, kw)
          case (kw_geostatic)
             call read_procedure(p, .true., model, kw)
+         case (kw_strength_reduction)
+            call read_strength_reduction(p, model, kw)
          case (kw_dsload)
             call load_amplitude(p, model, kw, '*DSLOAD')
             call read_dsload(p, model, kw)
@@ -238,6 +243,19 @@ contains
          p%elem_offset = p%parts(p%cur_part)%elem_offset
       end if
    end subroutine restore_offsets
+
+   !> The first load keyword of the current step (its location and name), which a
+   !> strength reduction step refuses (end_step): it keeps the previous step's loads.
+   subroutine note_load(p, id)
+      type(deck_parser_t), intent(inout) :: p
+      integer, intent(in) :: id
+      if (p%cur%load_loc%line > 0) return
+      select case (id)
+      case (kw_boundary, kw_cload, kw_dload, kw_dsload, kw_uplift, kw_temperature)
+         p%cur%load_loc = here(p)
+         p%cur%load_kw = '*'//trim(keywords(id)%name)
+      end select
+   end subroutine note_load
 
    !> Model-data keywords may not appear inside a step, step keywords only there.
    subroutine check_context(p, id, ok)

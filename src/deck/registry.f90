@@ -27,7 +27,7 @@ module vemcontact_deck_registry
                                  kw_part = 36, kw_end_part = 37, kw_assembly = 38, kw_end_assembly = 39, &
                                  kw_instance = 40, kw_end_instance = 41, kw_preprint = 42, kw_restart = 43, &
                                  kw_initial_conditions = 44, kw_temperature = 45, kw_expansion = 46, kw_tie = 47, &
-                                 kw_amplitude = 48, kw_friction = 49
+                                 kw_amplitude = 48, kw_friction = 49, kw_strength_reduction = 50
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -59,7 +59,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(49) = [ &
+   type(keyword_spec_t), parameter :: keywords(50) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -108,9 +108,10 @@ module vemcontact_deck_registry
                                       keyword_spec_t('EXPANSION', ctx_model, data_required), &
                                       keyword_spec_t('TIE', ctx_model, data_required), &
                                       keyword_spec_t('AMPLITUDE', ctx_any, data_required), &
-                                      keyword_spec_t('FRICTION', ctx_model, data_optional)]
+                                      keyword_spec_t('FRICTION', ctx_model, data_optional), &
+                                      keyword_spec_t('STRENGTH REDUCTION', ctx_step, data_optional)]
 
-   type(param_spec_t), parameter :: params(154) = [ &
+   type(param_spec_t), parameter :: params(157) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -132,6 +133,10 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_dload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_dsload, 'OP', par_value, .false., val_name, 'MOD NEW'), &
                                     param_spec_t(kw_static, 'SOLVER', par_value, .false., val_name, ''), &
+                                    ! vemcontact: TOLERANCE's range is checked by the handler
+                                    param_spec_t(kw_strength_reduction, 'INTERACTION', par_value, .false., val_name, ''), &
+                                    param_spec_t(kw_strength_reduction, 'TOLERANCE', par_value, .false., val_real, ''), &
+                                    param_spec_t(kw_strength_reduction, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_step, 'NLGEOM', par_optvalue, .false., val_name, 'NO YES'), &
                                     param_spec_t(kw_step, 'INC', par_value, .false., val_int, ''), &
                                     param_spec_t(kw_step, 'NAME', par_value, .false., val_path, ''), &

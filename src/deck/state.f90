@@ -7,7 +7,8 @@
 module vemcontact_deck_state
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, source_loc_t, named_set_t, dof_value_t, dload_t, &
-                               find_set, procedure_static, string_t, output_request_t, uplift_t
+                               find_set, procedure_static, string_t, output_request_t, uplift_t, &
+                               strength_reduction_t
    use vemcontact_deck_source, only: deck_source_t
    use vemcontact_deck_diagnostics, only: diag_t
    use vemcontact_deck_fields, only: field_list_t, edit_distance, to_upper, squeeze
@@ -45,6 +46,11 @@ module vemcontact_deck_state
       !> the *STATIC data line and parameters, *STEP's AMPLITUDE= (model's step_t)
       real(wp) :: dt_initial = 1.0_wp, period = 1.0_wp, dt_min = 0.0_wp, dt_max = 1.0e30_wp
       logical :: direct = .false., ramp = .true.
+      !> *STRENGTH REDUCTION's parameters
+      type(strength_reduction_t) :: srm
+      !> the first load keyword of the step (line 0: none), refused in a strength reduction step
+      type(source_loc_t) :: load_loc
+      character(len=:), allocatable :: load_kw
       character(len=:), allocatable :: name
       type(output_request_t), allocatable :: outputs(:)
       integer :: nout = 0

@@ -12,10 +12,12 @@
 !> (run_step, solve_increment), the post-processing of the converged state
 !> (post_process) and the output (write_results).
 module vemcontact_driver_static
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, append_message, fatal_error, err_solver
    use vemcontact_model, only: model_t, string_t, form_vem, form_fem, etype_polygon, procedure_geostatic, &
-                               element_order, etype_polygon2, pair_surface_to_surface, amplitude_t
+                               element_order, etype_polygon2, pair_surface_to_surface, amplitude_t, &
+                               procedure_strength_reduction
    use vemcontact_sparse_mmio, only: write_matrix_market
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_driver_linear, only: linear_system_t
@@ -42,6 +44,8 @@ module vemcontact_driver_static
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_contact_friction, only: tangent_stick, tangent_slip
    use vemcontact_log, only: logger_t
+   use vemcontact_driver_strength_reduction, only: srm_result_t, run_strength_reduction, reduced_strength
+   use vemcontact_output_srm, only: write_srm_csv
    use vemcontact_interrupt, only: interrupt_error, interrupt_context, is_interrupt, err_interrupt_base
    use vemcontact_solver_stop, only: agreed_stop_signal
    implicit none
@@ -91,6 +95,8 @@ module vemcontact_driver_static
       real(wp), allocatable :: u(:)     !< displacements of the last converged increment
       real(wp), allocatable :: u_ref(:) !< displacements at the end of a geostatic step
       type(state_results_t) :: res
+      !> the trials of the current step when it is a strength reduction step
+      type(srm_result_t) :: srm
       type(pvd_list_t) :: pvd           !< the VTU files written, for JOB.pvd
       character(len=:), allocatable :: base  !< out_dir/job
       integer :: current = 0            !< the step being run
@@ -369,7 +375,18 @@ contains
       ! one increment (the default): the log as without increments
       several = ctl%dt < ctl%period
       u_start = rs%u
-      do while (.not. ctl%finished())
+      if (model%steps(istep)%procedure == procedure_strength_reduction) then
+         ! the previous step's loads (the step has none of its own), the trials instead
+         ! of the increments
+         rs%applied = loads_at(model%steps(istep), rs%given, rs%prev, u_start, 1.0_wp, rs%t_start, &
+                               model%amplitudes)
+         call run_strength_reduction(model, model%steps(istep)%srm, rs%sys, rs%applied, rs%u, rs%contact, log, &
+                                     rs%srm, error)
+         if (allocated(error)) return
+         call say_factor(log, rs%srm)
+         call log%lap('strength reduction')
+      end if
+      do while (.not. ctl%finished() .and. model%steps(istep)%procedure /= procedure_strength_reduction)
          call ctl%next()
          if (several) then
             write (buf, '(2x,a,i0,a,es12.5,a,es12.5,a)') 'increment ', ctl%increment + 1, ': step time ', &
@@ -434,6 +451,10 @@ contains
       rs%res%extra%time = rs%t_start
       call write_results(model, opts, log, rs, istep, 0, error)
       if (allocated(error)) return
+      if (model%steps(istep)%procedure == procedure_strength_reduction) then
+         call write_srm(rs, istep, error)
+         if (allocated(error)) return
+      end if
       rs%done = istep
       rs%pvd_done = rs%pvd%n
       ! the .pvd and an HDF5 flush cost O(steps so far) each: after steps 1, 2, 4, ...
@@ -736,7 +757,8 @@ contains
                                      pack(tab%copen, tab%pair == ip_), pack(tab%cpress, tab%pair == ip_), &
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
                                      pack(tab%status, tab%pair == ip_), error, sel, &
-                                     cshear=pack(tab%cshear, tab%pair == ip_), cfluidp=fluid)
+                                     cshear=pack(tab%cshear, tab%pair == ip_), cfluidp=fluid, &
+                                     strength=strength_in_force(model, rs, istep, ip_))
             if (allocated(error)) return
          end do
       end associate
@@ -753,6 +775,53 @@ contains
          call log%say(trim(buf))
       end if
    end subroutine write_contact_results
+
+   !> The friction coefficient and cohesion of pair ip_ in force in step istep: those
+   !> of its interaction, divided by the factor of safety in a strength reduction step.
+   function strength_in_force(model, rs, istep, ip_) result(s)
+      type(model_t), intent(in) :: model
+      type(run_state_t), intent(in) :: rs
+      integer, intent(in) :: istep, ip_
+      real(wp) :: s(2)
+      real(wp) :: f
+      f = 1.0_wp
+      if (model%steps(istep)%procedure == procedure_strength_reduction) f = rs%srm%f_lower
+      call reduced_strength(model, model%steps(istep)%srm, ip_, f, s(1), s(2))
+   end function strength_in_force
+
+   !> The factor of safety of a strength reduction step in the log.
+   subroutine say_factor(log, srm)
+      type(logger_t), intent(inout) :: log
+      type(srm_result_t), intent(in) :: srm
+      character(len=200) :: buf
+      if (srm%f_upper >= huge(1.0_wp)) then
+         write (buf, '(2x,a,f12.6,a,i0,a)') 'factor of safety >= ', srm%f_lower, &
+            ' (equilibrium up to the largest factor; ', size(srm%f), ' trials)'
+      else
+         write (buf, '(2x,a,f12.6,a,f12.6,a,f12.6,a,es9.2,a,i0,a,i0,a)') 'factor of safety ', srm%f_lower, &
+            ' (equilibrium at F = ', srm%f_lower, ', none at F = ', srm%f_upper, '; tolerance ', srm%tolerance, &
+            '; ', size(srm%f), ' trials, ', srm%factorizations, ' factorizations)'
+      end if
+      call log%say(trim(buf))
+   end subroutine say_factor
+
+   !> A strength reduction step's trials: /steps/NNNN/strength_reduction and the step
+   !> attribute factor_of_safety in JOB.h5, JOB_srm_NNNN.csv.
+   subroutine write_srm(rs, istep, error)
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(out) :: error
+      real(wp) :: upper
+      associate (r => rs%srm)
+         upper = r%f_upper
+         if (upper >= huge(1.0_wp)) upper = ieee_value(upper, ieee_positive_inf)
+         call rs%h5%write_strength_reduction(istep, r%f, r%converged, r%u_char, r%iterations, r%tolerance, &
+                                             r%f_lower, upper, error)
+         if (allocated(error)) return
+         call write_srm_csv(rs%base//'_srm_'//frame_suffix(istep, 0)//'.csv', r%f, r%converged, r%u_char, &
+                            r%iterations, r%reason, error)
+      end associate
+   end subroutine write_srm
 
    !> NNNN (the step, four digits or more) or NNNN_MMMM for increment `frame` > 0.
    pure function frame_suffix(istep, frame) result(s)

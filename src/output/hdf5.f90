@@ -62,6 +62,7 @@ module vemcontact_output_hdf5
       procedure :: write_step => h5_write_step
       procedure :: write_contact => h5_write_contact
       procedure :: write_iterations => h5_write_iterations
+      procedure :: write_strength_reduction => h5_write_strength_reduction
       procedure :: discard_step => h5_discard_step
       procedure :: write_labels => h5_write_labels
       procedure :: write_results => h5_write_results
@@ -278,7 +279,7 @@ contains
    !> (with CPRESS, when given), CNAREA and STATUS (0 open, 1 closed, 2 slid off, 3 stick,
    !> 4 slip), with *UPLIFT CFLUIDP beside CPRESS.
    subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel, &
-                               cshear, cfluidp)
+                               cshear, cfluidp, strength)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
@@ -290,6 +291,8 @@ contains
       real(wp), intent(in), optional :: cshear(:)
       !> CFLUIDP, the water pressure in the joint (*UPLIFT), written beside CPRESS
       real(wp), intent(in), optional :: cfluidp(:)
+      !> the friction coefficient and cohesion in force (attributes friction_coefficient, cohesion)
+      real(wp), intent(in), optional :: strength(2)
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
@@ -323,6 +326,10 @@ contains
          call put_real(self, grp, 'CSLIP', shape(cslip, hsize_t), cslip, error)
       if (.not. allocated(error)) call put_real(self, grp, 'CNAREA', shape(cnarea, hsize_t), cnarea, error)
       if (.not. allocated(error)) call put_int(self, grp, 'STATUS', shape(st, hsize_t), st, error)
+      if (present(strength)) then
+         if (.not. allocated(error)) call put_real_attribute(self, grp, 'friction_coefficient', strength(1), error)
+         if (.not. allocated(error)) call put_real_attribute(self, grp, 'cohesion', strength(2), error)
+      end if
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
@@ -382,6 +389,48 @@ contains
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
    end subroutine h5_write_iterations
+
+   !> Write a strength reduction step's search: the step attribute factor_of_safety and
+   !> the group /steps/NNNN/strength_reduction with one entry per trial in trial order
+   !> (F, converged 0/1, u_char, iterations) and the attributes tolerance, F_lower,
+   !> F_upper (+Inf when no trial failed).
+   subroutine h5_write_strength_reduction(self, istep, f, converged, u_char, iterations, tolerance, f_lower, &
+                                          f_upper, error)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep
+      real(wp), intent(in) :: f(:), u_char(:), tolerance, f_lower, f_upper
+      integer, intent(in) :: converged(:), iterations(:)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: gname
+      integer(hid_t) :: grp
+      integer(hsize_t) :: dims(1)
+      integer(ip), allocatable :: col(:)
+      integer :: hdferr
+      if (.not. check_open(self, 'write_strength_reduction', error)) return
+      gname = result_group(self, istep)
+      call h5gopen_f(self%file, gname, grp, hdferr)
+      if (failed(self, hdferr, 'opening group '//gname, error)) return
+      call put_real_attribute(self, grp, 'factor_of_safety', f_lower, error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group '//gname, error)) return
+      gname = gname//'/strength_reduction'
+      call h5gcreate_f(self%file, gname, grp, hdferr)
+      if (failed(self, hdferr, 'creating group '//gname, error)) return
+      dims = size(f, kind=hsize_t)
+      call put_real(self, grp, 'F', dims, f, error)
+      col = int(converged, ip)
+      if (.not. allocated(error)) call put_int(self, grp, 'converged', dims, col, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'u_char', dims, u_char, error)
+      col = int(iterations, ip)
+      if (.not. allocated(error)) call put_int(self, grp, 'iterations', dims, col, error)
+      if (.not. allocated(error)) call put_real_attribute(self, grp, 'tolerance', tolerance, error)
+      if (.not. allocated(error)) call put_real_attribute(self, grp, 'F_lower', f_lower, error)
+      if (.not. allocated(error)) call put_real_attribute(self, grp, 'F_upper', f_upper, error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group '//gname, error)) return
+   end subroutine h5_write_strength_reduction
 
    !> Add to /mesh (after write_mesh) the labels of the elements: element_set
    !> (index into element_set_names, the set of the element's *SOLID SECTION, 1-based,

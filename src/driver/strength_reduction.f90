@@ -1,0 +1,271 @@
+!> A strength reduction step (*STRENGTH REDUCTION, docs/sliding-safety.md "Factor of
+!> safety by strength reduction"): the friction coefficient and cohesion of the reduced
+!> interactions are divided by trial factors F, each trial solving equilibrium with the
+!> previous step's loads, until the largest F with equilibrium is located (the rules of
+!> vemcontact_driver_srm_search).
+!>
+!> Every trial starts from the base state, the previous step's converged displacements
+!> and contact state (its friction history included), not from the last converged
+!> trial: friction is path dependent, and starting each trial from the same state
+!> makes the outcome of a trial a function of F alone, so that the factor found does
+!> not depend on the order of the trials (first trial, largest factor).  The
+!> factorization is the linear system's own business: a trial whose contact state
+!> matches the current factor's (the stick/slip and open/closed key) solves with it.
+!>
+!> A trial fails, and the reason is named in its log line, when
+!> * the contact iteration does not converge (MAXIT iterations, a cycle of its active
+!>   set, a factorization that fails or a solution with non-finite values: the matrix
+!>   of a mechanism, every node of the joint slipping, is singular);
+!> * it converges to a displacement from the base state larger than `runaway` times
+!>   the scale of the base state (its largest |U|, or a millionth of the model's size
+!>   when that is zero): a body in frictional equilibrium moves by elastic deformation
+!>   and elastic slip, of the order of what the loads already did; a thousand times
+!>   that is sliding that the penalty springs merely arrest.
+!> Only an interrupt (SIGINT, SIGTERM) ends the step from inside a trial.
+module vemcontact_driver_strength_reduction
+   use vemcontact_kinds, only: wp
+   use vemcontact_error, only: error_t, fatal_error, err_model
+   use vemcontact_model, only: model_t, strength_reduction_t
+   use vemcontact_driver_linear, only: linear_system_t
+   use vemcontact_driver_load_state, only: load_state_t
+   use vemcontact_driver_srm_search, only: srm_search_t, srm_slides, srm_unbounded
+   use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_tangential, only: make_law
+   use vemcontact_log, only: logger_t
+   use vemcontact_interrupt, only: is_interrupt
+   implicit none
+   private
+
+   public :: srm_result_t, run_strength_reduction, reduced_strength
+
+   !> a converged displacement beyond this many times the base state's scale has slid
+   real(wp), parameter :: runaway = 1.0e3_wp
+
+   !> The trials of a strength reduction step, in trial order, and the factor found.
+   type :: srm_result_t
+      real(wp), allocatable :: f(:), u_char(:)
+      integer, allocatable :: converged(:), iterations(:)
+      character(len=48), allocatable :: reason(:)   !< 'converged' or what ended the trial
+      real(wp) :: tolerance = 0.0_wp
+      real(wp) :: f_lower = 0.0_wp   !< the largest factor that converged: the factor of safety
+      real(wp) :: f_upper = 0.0_wp   !< the smallest that failed (+Inf: none up to the largest)
+      integer :: factorizations = 0  !< numeric factorizations of all trials
+   end type srm_result_t
+
+contains
+
+   !> The friction coefficient and cohesion of pair p's interaction at factor f (f = 1:
+   !> as given); interactions that the step does not reduce keep theirs.
+   pure subroutine reduced_strength(model, srm, p, f, mu, c)
+      type(model_t), intent(in) :: model
+      type(strength_reduction_t), intent(in) :: srm
+      integer, intent(in) :: p
+      real(wp), intent(in) :: f
+      real(wp), intent(out) :: mu, c
+      integer :: k
+      k = model%pairs(p)%interaction
+      mu = model%interactions(k)%mu
+      c = model%interactions(k)%cohesion
+      if (.not. reduced(model, srm, k)) return
+      mu = mu/f
+      c = c/f
+   end subroutine reduced_strength
+
+   !> Whether interaction k is reduced: the one named, or every Coulomb/Mohr-Coulomb one.
+   pure logical function reduced(model, srm, k)
+      type(model_t), intent(in) :: model
+      type(strength_reduction_t), intent(in) :: srm
+      integer, intent(in) :: k
+      associate (it => model%interactions(k))
+         reduced = it%has_friction .and. .not. it%rough .and. (it%mu > 0.0_wp .or. it%cohesion > 0.0_wp)
+      end associate
+      if (srm%interaction > 0) reduced = reduced .and. k == srm%interaction
+   end function reduced
+
+   !> The strength reduction step: trials from the base state (u, contact) with the
+   !> loads `applied` until the search ends; u and contact are then the last converged
+   !> trial's (with the unreduced laws again, for the steps after it).  Bodies that
+   !> slide at F = 1 end the run (err_model: exit 3).
+   subroutine run_strength_reduction(model, srm, sys, applied, u, contact, log, res, error)
+      type(model_t), intent(in) :: model
+      type(strength_reduction_t), intent(in) :: srm
+      type(linear_system_t), intent(inout) :: sys
+      type(load_state_t), intent(in) :: applied
+      real(wp), intent(inout) :: u(:)
+      type(contact_state_t), intent(inout) :: contact
+      type(logger_t), intent(inout) :: log
+      type(srm_result_t), intent(out) :: res
+      type(error_t), allocatable, intent(out) :: error
+      type(srm_search_t) :: search
+      type(contact_state_t) :: base, best
+      real(wp), allocatable :: u_base(:), u_best(:)
+      real(wp) :: f, scale, uc
+      logical :: ok
+      integer :: iters
+      character(len=48) :: why
+      search = srm_search_t(tolerance=srm%tolerance, f_first=srm%f_first, f_max=srm%f_max)
+      allocate (res%f(0), res%u_char(0), res%converged(0), res%iterations(0), res%reason(0))
+      res%tolerance = srm%tolerance
+      u_base = u
+      base = contact
+      scale = base_scale(model, u_base)
+      call log%say(trial_header())
+      do while (.not. search%done())
+         f = search%next_factor()
+         u = u_base
+         contact = base
+         call set_laws(model, srm, contact, f)
+         call run_trial(model, sys, applied, u, u_base, scale, contact, ok, iters, why, error)
+         if (allocated(error)) return
+         uc = 0.0_wp
+         if (ok) uc = char_displacement(model, srm, u, u_base)
+         res%f = [res%f, f]
+         res%u_char = [res%u_char, uc]
+         res%converged = [res%converged, merge(1, 0, ok)]
+         res%iterations = [res%iterations, iters]
+         res%reason = [character(len=48) :: res%reason, why]
+         res%factorizations = res%factorizations + sys%factorizations
+         call log%say(trial_line(size(res%f), f, ok, why, iters, uc))
+         call search%record(f, ok)
+         if (ok) then
+            u_best = u
+            best = contact
+         end if
+      end do
+      if (search%phase == srm_slides) then
+         u = u_base
+         contact = base
+         call fatal_error(error, 'error: no equilibrium at F = 1: the bodies slide ('//trim(why)//')'// &
+                          new_line('a')//'  = help: the joints cannot carry the loads of the previous step '// &
+                          'with their friction as given; the factor of safety is below 1', err_model)
+         return
+      end if
+      u = u_best
+      contact = best
+      res%f_lower = search%f_ok
+      res%f_upper = search%f_fail
+      if (search%phase == srm_unbounded) res%f_upper = huge(1.0_wp)
+      ! the steps after this one have the strengths as given
+      call set_laws(model, srm, contact, 1.0_wp)
+   end subroutine run_strength_reduction
+
+   !> One trial: the contact iteration from the base state; ok, its iterations, and the
+   !> reason it ended.  Errors of the solve are the trial's failure, except interrupts.
+   subroutine run_trial(model, sys, applied, u, u_base, scale, contact, ok, iters, why, error)
+      type(model_t), intent(in) :: model
+      type(linear_system_t), intent(inout) :: sys
+      type(load_state_t), intent(in) :: applied
+      real(wp), intent(inout) :: u(:)
+      real(wp), intent(in) :: u_base(:), scale
+      type(contact_state_t), intent(inout) :: contact
+      logical, intent(out) :: ok
+      integer, intent(out) :: iters
+      character(len=*), intent(out) :: why
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err
+      call sys%solve_state(model, applied, u, err, contact)
+      iters = sys%iterations
+      ok = .not. allocated(err)
+      if (ok) then
+         why = 'converged'
+         if (maxval(abs(u - u_base)) > runaway*scale) then
+            ok = .false.
+            why = 'displacement grows without bound'
+         end if
+         return
+      end if
+      if (is_interrupt(err%code)) then
+         call move_alloc(err, error)
+         return
+      end if
+      why = failure_reason(err%message, iters, model%controls%max_iterations)
+   end subroutine run_trial
+
+   !> What ended a trial whose solve failed, from its message.
+   pure function failure_reason(msg, iters, maxit) result(why)
+      character(len=*), intent(in) :: msg
+      integer, intent(in) :: iters, maxit
+      character(len=48) :: why
+      if (index(msg, 'NaN') > 0 .or. index(msg, 'singular') > 0 .or. index(msg, 'positive') > 0) then
+         why = 'singular matrix (a mechanism)'
+      else if (index(msg, 'cycle') > 0) then
+         why = 'active set cycles'
+      else if (iters >= maxit) then
+         why = 'no convergence in MAXIT iterations'
+      else if (index(msg, 'condition') > 0) then
+         why = 'ill-conditioned matrix (a mechanism)'
+      else
+         why = 'contact iteration failed'
+      end if
+   end function failure_reason
+
+   !> The tangential laws of every pair at factor f.
+   subroutine set_laws(model, srm, contact, f)
+      type(model_t), intent(in) :: model
+      type(strength_reduction_t), intent(in) :: srm
+      type(contact_state_t), intent(inout) :: contact
+      real(wp), intent(in) :: f
+      real(wp) :: mu, c
+      integer :: p
+      do p = 1, size(model%pairs)
+         associate (it => model%interactions(model%pairs(p)%interaction))
+            if (.not. reduced(model, srm, model%pairs(p)%interaction)) cycle
+            call reduced_strength(model, srm, p, f, mu, c)
+            call make_law(it%has_friction, it%rough, mu, it%stick_slope, c, contact%fric%laws(p))
+         end associate
+      end do
+   end subroutine set_laws
+
+   !> The displacement scale of the base state: its largest |U|, or a millionth of the
+   !> model's size when nothing has moved yet.
+   pure real(wp) function base_scale(model, u_base) result(s)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u_base(:)
+      real(wp) :: size_
+      size_ = max(maxval(model%x(1, :)) - minval(model%x(1, :)), maxval(model%x(2, :)) - minval(model%x(2, :)))
+      s = maxval(abs(u_base))
+      if (.not. (s > 0.0_wp)) s = 1.0e-6_wp*size_
+   end function base_scale
+
+   !> The largest |U - U_base| of the step's node set (every node without NSET).
+   pure real(wp) function char_displacement(model, srm, u, u_base) result(d)
+      type(model_t), intent(in) :: model
+      type(strength_reduction_t), intent(in) :: srm
+      real(wp), intent(in) :: u(:), u_base(:)
+      integer :: k, i
+      d = 0.0_wp
+      if (srm%nset == 0) then
+         do i = 1, int(model%nnode)
+            d = max(d, norm2(u(2*i - 1:2*i) - u_base(2*i - 1:2*i)))
+         end do
+      else
+         do k = 1, size(model%nsets(srm%nset)%items)
+            i = int(model%nsets(srm%nset)%items(k))
+            d = max(d, norm2(u(2*i - 1:2*i) - u_base(2*i - 1:2*i)))
+         end do
+      end if
+   end function char_displacement
+
+   pure function trial_header() result(s)
+      character(len=:), allocatable :: s
+      s = '  strength reduction: trial, F, outcome, contact iterations, u_char'
+   end function trial_header
+
+   !> "    trial 3  F = 1.750000  converged  (7 iterations)  u_char = 1.2345E-03"
+   pure function trial_line(k, f, ok, why, iters, uc) result(s)
+      integer, intent(in) :: k, iters
+      real(wp), intent(in) :: f, uc
+      logical, intent(in) :: ok
+      character(len=*), intent(in) :: why
+      character(len=:), allocatable :: s
+      character(len=200) :: b
+      if (ok) then
+         write (b, '(4x,a,i0,a,f12.6,a,i0,a,es12.5)') 'trial ', k, '  F = ', f, '  converged  (', iters, &
+            ' iterations)  u_char = ', uc
+      else
+         write (b, '(4x,a,i0,a,f12.6,a,i0,a)') 'trial ', k, '  F = ', f, '  failed: '//trim(why)//'  (', iters, &
+            ' iterations)'
+      end if
+      s = trim(b)
+   end function trial_line
+end module vemcontact_driver_strength_reduction
