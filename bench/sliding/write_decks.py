@@ -81,7 +81,7 @@ def rock_block_deck(zw: float, c: float = ROCK["c"], phi: float = ROCK["phi"], s
               "0., 0., 0.",
               "*END STEP"]
     if srm:
-        L += ["*STEP, NAME=SAFETY", "*STRENGTH REDUCTION, INTERACTION=JOINT", "1.0, 5.0", "*END STEP"]
+        L += ["*STEP, NAME=SAFETY", "*STRENGTH REDUCTION, INTERACTION=JOINT", "*END STEP"]
     return "\n".join(L) + "\n"
 
 
@@ -145,7 +145,7 @@ def two_wedge_deck(variant: str, phi: float = 45.0, c_seam: float = 0.0, srm: bo
         L += [f"*UPLIFT, INTERACTION=SEAM, UNIT WEIGHT=9810.{up[0]}"] + up[1]
     L += ["*END STEP"]
     if srm:
-        L += ["*STEP, NAME=SAFETY", "*STRENGTH REDUCTION", "1.0, 5.0", "*END STEP"]
+        L += ["*STEP, NAME=SAFETY", "*STRENGTH REDUCTION", "*END STEP"]
     return "\n".join(L) + "\n"
 
 
