@@ -89,8 +89,18 @@ def _water_force(a, b, head_of, n=4000):
     return p.sum() * L / n * nin
 
 
-def two_wedge(variant="dry", phi=35.0, c=0.0):
-    """F of the dam + both wedges sliding on the seam (back joint open, water in it)."""
+def _arc(x):
+    """Arc length from the heel along the back joint and the seam of the point x on them."""
+    lb = float(np.linalg.norm(KINK - HEEL))
+    if _s(x) <= _s(KINK):
+        return float(np.linalg.norm(x - HEEL))
+    return lb + float(np.linalg.norm(x - KINK))
+
+
+def two_wedge(variant="dry", phi=45.0, c=0.0, crack=None):
+    """F of the dam + both wedges sliding on the seam (back joint open, water in it).
+    `crack`: for the penetration variant, the length from the heel (arc length) that
+    carries the headwater (default: the back joint, sqrt 5)."""
     Ad, _, _ = polygon([(4, 10), (9, 10), (6, 15), (4, 15)])
     Au, _, _ = polygon([HEEL, KINK, SPLIT, (9.5, 10.0), (9.0, 10.0)])
     Ab, _, _ = polygon([SPLIT, DAYLIGHT, (12.0, 10.0), (9.5, 10.0)])
@@ -104,11 +114,15 @@ def two_wedge(variant="dry", phi=35.0, c=0.0):
             s = _s(x)
             return HEAD + (hd - HEAD) * s / sd if s <= sd else hd + (TAIL - hd) * (s - sd) / (1.0 - sd)
     elif variant == "penetration":
-        sk = _s(KINK)
+        a = float(np.linalg.norm(KINK - HEEL)) if crack is None else crack
+        lb = float(np.linalg.norm(KINK - HEEL))
+        tip = HEEL + (KINK - HEEL) * a / lb if a <= lb else KINK + (DAYLIGHT - KINK) * (a - lb) / np.linalg.norm(
+            DAYLIGHT - KINK)
+        sk = _s(tip)
 
         def head(x):
             s = _s(x)
-            return HEAD if s <= sk else HEAD + (TAIL - HEAD) * (s - sk) / (1.0 - sk)
+            return HEAD if _arc(x) <= a else HEAD + (TAIL - HEAD) * (s - sk) / (1.0 - sk)
     else:
         head = lin
     if variant != "dry":
@@ -129,10 +143,13 @@ def main():
     print("rock block, phi 35:")
     for zw in (0.0, 3.0, 6.0):
         print(f"  zw = {zw:3.1f}  c = 20 kPa: {rock_block(zw):.4f}   c = 0: {rock_block(zw, c=0.0):.4f}")
-    print("two wedges on the seam, phi 35, c = 0 (USACE multi-wedge, same F on every base):")
-    for v in ("dry", "uplift", "drained", "penetration"):
-        F, d = two_wedge(v)
-        print(f"  {v:12s} F = {F:.4f}   (W = {d['W']:.2f} kN, N' = {d['N']:.2f} kN, T = {d['T']:.2f} kN)")
+    for phi in (45.0, 35.0):
+        print(f"two wedges on the seam, phi {phi:g}, c = 0 (USACE multi-wedge, same F on every base):")
+        for v in ("dry", "uplift", "drained", "penetration"):
+            F, d = two_wedge(v, phi)
+            print(f"  {v:12s} F = {F:.4f}   (W = {d['W']:.2f} kN, N' = {d['N']:.2f} kN, T = {d['T']:.2f} kN)")
+        F, d = two_wedge("penetration", phi, crack=1.59462)
+        print(f"  penetration, headwater over the FE's 1.595 m from the heel: F = {F:.4f} (N' = {d['N']:.2f} kN)")
 
 
 if __name__ == "__main__":
