@@ -301,6 +301,38 @@ def test_pressure_penetration_on_a_frictional_joint(exe, tmp_path, nx):
     assert (np.abs(c["CSHEAR"][k:]) <= (1.0e5 + c["CPRESS"][k:]) * (1 + 1e-6)).all()
 
 
+@pytest.mark.parametrize("nx", [20, 40])
+def test_strength_reduction_on_a_cracked_base(exe, tmp_path, nx):
+    """Strength reduction on the cracked ssnp142 base (phi = 45 deg, c = 100 kPa): the
+    cohesion acts on the closed length only, so the factor is (c L_closed + N' tan phi)/H
+    with the run's own crack (L_closed = sum CNAREA of the closed nodes, N' = sum CPRESS
+    CNAREA, both at F = 1): measured -0.02 % (nx = 20), -0.07 % (40); the bisection's
+    tolerance is 1e-3, so 2e-3.  The crack does not change during the reduction (the base
+    pressure of a rigid dam is fixed by statics).  Against the no-tension gravity method
+    (computed here, 1.3755) the factor differs by what one mesh cell of crack changes:
+    (c + gamma_w h_w tan phi / 2) h / H; uncracked, the base would give 2.6288."""
+    h5, _ = penetration_on_friction(exe, tmp_path, nx, after="*STEP\n*STRENGTH REDUCTION\n*END STEP")
+    c1, c2 = pair(h5, "0001"), pair(h5, "0002")
+    area, closed = c1["CNAREA"], c1["STATUS"] != 0
+    assert np.array_equal(c2["STATUS"] != 0, closed)
+    thrust = 0.5 * GW * 9.0**2
+    n_eff = np.sum(c1["CPRESS"] * area)
+    with h5py.File(h5) as f:
+        F = float(f["steps/0002"].attrs["factor_of_safety"])
+    assert F == pytest.approx((1.0e5 * area[closed].sum() + n_eff * 1.0) / thrust, rel=2e-3)
+    # the gravity method: crack a, uplift full head over it then linear, N' = W - U
+    a = gravity_method_crack(SSNP142, 9.0, 5.0)
+    P = np.asarray(SSNP142, float)
+    W = RHO * G * 0.5 * abs(np.sum(P[:, 0] * np.roll(P[:, 1], -1) - np.roll(P[:, 0], -1) * P[:, 1]))
+    U = GW * 9.0 * (a + 0.5 * (5.0 - a))
+    fs_gm = (1.0e5 * (5.0 - a) + (W - U) * 1.0) / thrust
+    assert fs_gm == pytest.approx(1.3755, abs=1e-4)
+    h = 5.0 / nx
+    assert abs(F - fs_gm) <= (1.0e5 + 0.5 * GW * 9.0) * h / thrust
+    uncracked = (1.0e5 * 5.0 + (W - 0.5 * GW * 9.0 * 5.0)) / thrust
+    assert uncracked == pytest.approx(2.6288, abs=1e-4) and F < 0.6 * uncracked
+
+
 def test_crack_past_the_drains(exe, tmp_path):
     """ssnp142 with a drain line 1 m from the heel (USBR): the first pass, with the drained
     diagram, cracks less, but the crack then grows past the drain line, the drains lose
