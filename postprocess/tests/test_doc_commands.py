@@ -108,7 +108,7 @@ def argv(cmd, exe):
 @pytest.fixture(scope="module")
 def runs(vemcontact, tmp_path_factory):
     out = tmp_path_factory.mktemp("doccmd")
-    for deck in ("dam_joint", "hertz_389_vem", "hertz_329_fem2", "block_selfweight"):
+    for deck in ("dam_joint", "hertz_389_vem", "hertz_329_fem2", "block_selfweight", "rock_block_crack3"):
         subprocess.run([vemcontact, "-q", "-o", str(out / deck), os.path.join(ROOT, "inputs", deck + ".inp")], check=True)
     return out
 
@@ -147,6 +147,7 @@ def substitutions(runs, tmp, model):
             ("OUT_DIR_OR_CSV", str(runs / "hertz_389_vem")),
             ("RUN.h5", str(runs / "hertz_389_vem" / "hertz_389_vem.h5")),
             ("RESULT.h5", str(runs / "hertz_389_vem" / "hertz_389_vem.h5")), ("REFERENCE.h5", ref),
+            ("SRM.h5", str(runs / "rock_block_crack3" / "rock_block_crack3.h5")),
             ("SCENE.toml", str(scene)), ("DECK.inp", str(deck)), ("FILE.msh", str(msh)),
             ("postprocess/examples/", os.path.join(ROOT, "postprocess", "examples") + "/")]
 

@@ -107,9 +107,10 @@ def plot_srm(path: str, out: str, step: int = 0, title: str | None = None, units
     order = np.argsort(d["F"][ok])
     ax.plot(d["u_char"][ok][order], d["F"][ok][order], "o-", color="#1f77b4", ms=4, label="converged trial")
     if (~ok).any():
-        finite = np.isfinite(d["u_char"][~ok])
-        u_fail = np.where(finite, d["u_char"][~ok], np.nanmax(d["u_char"][ok]) if ok.any() else 0.0)
-        ax.plot(u_fail, d["F"][~ok], "x", color="#d62728", ms=8, mew=2, label="no equilibrium")
+        # a failed trial has no displacement to show (the file holds 0 or NaN): its cross
+        # stands at the largest converged u_char, at its F
+        u_fail = np.full(int((~ok).sum()), float(np.nanmax(d["u_char"][ok])) if ok.any() else 0.0)
+        ax.plot(u_fail, d["F"][~ok], "x", color="#d62728", ms=8, mew=2, label="no equilibrium (trial F)")
     if np.isfinite(d["factor_of_safety"]):
         ax.axhline(d["factor_of_safety"], color="k", ls="--", lw=1.0,
                    label=f"factor of safety {d['factor_of_safety']:.4g}")
