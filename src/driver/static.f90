@@ -376,10 +376,9 @@ contains
       several = ctl%dt < ctl%period
       u_start = rs%u
       if (model%steps(istep)%procedure == procedure_strength_reduction) then
-         ! the previous step's loads (the step has none of its own), the trials instead
-         ! of the increments
-         rs%applied = loads_at(model%steps(istep), rs%given, rs%prev, u_start, 1.0_wp, rs%t_start, &
-                               model%amplitudes)
+         ! the loads in force at the end of the previous step (the step has none of its
+         ! own, and amplitudes are not evaluated anew), the trials instead of the increments
+         rs%applied = rs%prev
          call run_strength_reduction(model, model%steps(istep)%srm, rs%sys, rs%applied, rs%u, rs%contact, log, &
                                      rs%srm, error)
          if (allocated(error)) return
