@@ -277,6 +277,9 @@ module vemcontact_model
       real(wp) :: tolerance = 1.0e-3_wp
       real(wp) :: f_first = 1.5_wp
       real(wp) :: f_max = 100.0_wp
+      !> the first trial factor was given on the data line: the bracket grows from it
+      !> instead of probing the estimate of the trial at F = 1
+      logical :: first_given = .false.
    end type strength_reduction_t
 
    !> One *STEP.  Loads follow CalculiX: with OP=MOD (default) a step's entries

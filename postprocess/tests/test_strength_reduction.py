@@ -118,15 +118,23 @@ def limit_equilibrium(h5, cohesion=0.0):
 @pytest.mark.parametrize("hard", [False, True], ids=["LINEAR", "HARD"])
 @pytest.mark.parametrize("uplift", [False, True], ids=["dry", "uplift"])
 def test_factor_matches_limit_equilibrium(exe, tmp_path, pair, hard, uplift):
-    """c = 0: F = (W - U) tan(phi)/H within 0.5 % (the bracket is 1e-3 wide)."""
-    h5, _ = run(exe, dam_deck(tmp_path / "dam.inp", pair=pair, hard=hard, uplift=uplift), tmp_path)
-    want, fs, srm, closed = limit_equilibrium(h5)
-    assert closed, "the base stays closed (the limit-equilibrium formula applies)"
-    assert abs(fs / want - 1) <= 5e-3, (fs, want)
-    # the factor is the last converged trial, the next failed one within the tolerance
-    assert srm["F_lower"] == fs and srm["F_upper"] > fs
-    assert (srm["F_upper"] - srm["F_lower"]) <= srm["tolerance"] * srm["F_lower"]
-    assert srm["converged"][0] == 1 and srm["F"][0] == 1.0
+    """c = 0: F = (W - U) tan(phi)/H within 0.5 % (the bracket is 1e-3 wide), by the
+    probes around the estimate of the trial at F = 1 (the default) and by the doubling
+    bracket and bisection from a first trial of 1.5 (the data line), which never uses
+    the estimate."""
+    for tag, data in (("probe", None), ("bisect", "1.5, 100.")):
+        (tmp_path / tag).mkdir()
+        h5, _ = run(exe, dam_deck(tmp_path / tag / "dam.inp", pair=pair, hard=hard, uplift=uplift, srm_data=data),
+                    tmp_path / tag)
+        want, fs, srm, closed = limit_equilibrium(h5)
+        assert closed, "the base stays closed (the limit-equilibrium formula applies)"
+        assert abs(fs / want - 1) <= 5e-3, (tag, fs, want)
+        # the factor is the last converged trial, the next failed one within the tolerance
+        assert srm["F_lower"] == fs and srm["F_upper"] > fs
+        assert (srm["F_upper"] - srm["F_lower"]) <= srm["tolerance"] * srm["F_lower"]
+        assert srm["converged"][0] == 1 and srm["F"][0] == 1.0
+        if data is not None:
+            assert srm["F"][1] == 1.5
 
 
 def test_cohesion_uncracked(exe, tmp_path):
@@ -159,9 +167,19 @@ def test_repeatable_and_csv(exe, tmp_path):
     assert abs(a["F_lower"] - b["F_lower"]) <= 1e-3 * a["F_lower"]
     assert b["F"][1] == 2.7
     wa, wc = a["F_upper"] - a["F_lower"], c["F_upper"] - c["F_lower"]
-    # each bisection halves the bracket, so the halved tolerance ends one bisection later
-    assert wc == pytest.approx(0.5 * wa, rel=1e-12)
-    assert len(c["F"]) == len(a["F"]) + 1
+    # the probes around the estimate lie 0.8 tolerance F_est apart: half as far with
+    # half the tolerance (relative 1e-9: the estimate is the same in both runs up to
+    # the round-off of the contact forces)
+    assert wc == pytest.approx(0.5 * wa, rel=1e-9)
+    assert wa <= 1e-3 * a["F_lower"] and wc <= 5e-4 * c["F_lower"]
+    # the doubling bracket and bisection from a given first trial: halved tolerance,
+    # one bisection more, exactly half the bracket
+    (tmp_path / "d").mkdir()
+    h5, _ = run(exe, dam_deck(tmp_path / "d" / "dam.inp", srm="*STRENGTH REDUCTION, TOLERANCE=5e-4",
+                              srm_data="2.7, 40."), tmp_path / "d")
+    d = limit_equilibrium(h5)[2]
+    assert d["F_upper"] - d["F_lower"] == pytest.approx(0.5 * (b["F_upper"] - b["F_lower"]), rel=1e-12)
+    assert len(d["F"]) == len(b["F"]) + 1
     # the log's factor, the CSV and the HDF5 datasets agree
     with open(tmp_path / "a" / "dam_srm_0003.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
@@ -241,3 +259,16 @@ def test_first_step_and_no_friction(exe, tmp_path):
                     .replace("BASENODES, 1, 2", "BASENODES, 1, 2\n1, 1"))
     _, r = run(exe, deck, tmp_path, code=1)
     assert "frictionless.inp:" in r.stderr and "no surface interaction has friction to reduce" in r.stderr
+
+
+def test_rerun_removes_stale_tables(exe, tmp_path):
+    """JOB_srm_NNNN.csv is one of the job's results: a rerun removes an earlier run's
+    (a step that no longer exists) and its leftover temporaries, and writes its own."""
+    deck = dam_deck(tmp_path / "dam.inp")
+    (tmp_path / "dam_srm_0007.csv").write_text("left by an earlier run")
+    (tmp_path / ".dam_srm_0003.csv.AAAAAAAAAAAA.tmp").write_text("left by a killed run")
+    (tmp_path / "dam_srm_notes.csv").write_text("not a result name: kept")
+    run(exe, deck, tmp_path)
+    names = os.listdir(tmp_path)
+    assert "dam_srm_0007.csv" not in names and ".dam_srm_0003.csv.AAAAAAAAAAAA.tmp" not in names
+    assert "dam_srm_notes.csv" in names and "dam_srm_0003.csv" in names

@@ -152,6 +152,7 @@ contains
          end if
          p%cur%srm%f_first = v(1)
          p%cur%srm%f_max = v(2)
+         p%cur%srm%first_given = given(1)
       end do
    end subroutine read_factors
 

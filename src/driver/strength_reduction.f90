@@ -4,13 +4,17 @@
 !> previous step's loads, until the largest F with equilibrium is located (the rules of
 !> vemcontact_driver_srm_search).
 !>
-!> Every trial starts from the base state, the previous step's converged displacements
-!> and contact state (its friction history included), not from the last converged
-!> trial: friction is path dependent, and starting each trial from the same state
-!> makes the outcome of a trial a function of F alone, so that the factor found does
-!> not depend on the order of the trials (first trial, largest factor).  The
-!> factorization is the linear system's own business: a trial whose contact state
-!> matches the current factor's (the stick/slip and open/closed key) solves with it.
+!> The trial at F = 1 starts from the base state, the previous step's converged
+!> displacements and contact state (its friction history included); every later trial
+!> from the last converged trial's state.  The search only ever tries factors above
+!> the largest that held (srm_search_t), so the trials follow one path of increasing
+!> F, as the incremental reduction of Plaxis' safety phase or FLAC's SOLVE fos: friction
+!> is path dependent, and a trial from the base state at a larger F would jump over
+!> the states between.  A failed trial leaves nothing behind.  Starting next to the
+!> limit also makes a failing trial short (2 contact iterations on the dam instead of
+!> 7 from the base state).  The factorization is the linear system's own business: a
+!> trial whose contact state matches the current factor's (the stick/slip and
+!> open/closed key) solves with it.
 !>
 !> A trial fails, and the reason is named in its log line, when
 !> * the contact iteration does not converge (MAXIT iterations, a cycle of its active
@@ -30,6 +34,7 @@ module vemcontact_driver_strength_reduction
    use vemcontact_driver_load_state, only: load_state_t
    use vemcontact_driver_srm_search, only: srm_search_t, srm_slides, srm_unbounded
    use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_iteration, only: iteration_record_t
    use vemcontact_contact_tangential, only: make_law
    use vemcontact_log, only: logger_t
    use vemcontact_interrupt, only: is_interrupt
@@ -82,8 +87,8 @@ contains
       if (srm%interaction > 0) reduced = reduced .and. k == srm%interaction
    end function reduced
 
-   !> The strength reduction step: trials from the base state (u, contact) with the
-   !> loads `applied` until the search ends; u and contact are then the last converged
+   !> The strength reduction step: trials from the base state (u, contact), then from
+   !> the last converged trial, with the loads `applied` until the search ends; u and contact are then the last converged
    !> trial's (with the unreduced laws again, for the steps after it).  Bodies that
    !> slide at F = 1 end the run (err_model: exit 3).
    subroutine run_strength_reduction(model, srm, sys, applied, u, contact, log, res, error)
@@ -98,6 +103,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(srm_search_t) :: search
       type(contact_state_t) :: base, best
+      type(iteration_record_t), allocatable :: records(:)
       real(wp), allocatable :: u_base(:), u_best(:)
       real(wp) :: f, scale, uc
       logical :: ok
@@ -112,8 +118,13 @@ contains
       call log%say(trial_header())
       do while (.not. search%done())
          f = search%next_factor()
-         u = u_base
-         contact = base
+         if (allocated(u_best)) then
+            u = u_best
+            contact = best
+         else
+            u = u_base
+            contact = base
+         end if
          call set_laws(model, srm, contact, f)
          call run_trial(model, sys, applied, u, u_base, scale, contact, ok, iters, why, error)
          if (allocated(error)) return
@@ -126,10 +137,14 @@ contains
          res%reason = [character(len=48) :: res%reason, why]
          res%factorizations = res%factorizations + sys%factorizations
          call log%say(trial_line(size(res%f), f, ok, why, iters, uc))
+         ! the estimate that the probes bracket, unless the deck gives the first trial
+         if (search%trials == 0 .and. ok .and. .not. srm%first_given) &
+            search%estimate = mobilized_ratio(model, srm, contact)
          call search%record(f, ok)
          if (ok) then
             u_best = u
             best = contact
+            records = sys%records
          end if
       end do
       if (search%phase == srm_slides) then
@@ -142,6 +157,8 @@ contains
       end if
       u = u_best
       contact = best
+      ! the iteration records of the step: those of the state it reports
+      sys%records = records
       res%f_lower = search%f_ok
       res%f_upper = search%f_fail
       if (search%phase == srm_unbounded) res%f_upper = huge(1.0_wp)
@@ -198,6 +215,43 @@ contains
          why = 'contact iteration failed'
       end if
    end function failure_reason
+
+   !> The estimate of the factor of safety from a converged state with the strengths as
+   !> given: for each reduced pair, the strength its closed entries offer,
+   !> sum(mu N + c A), over the shear they carry, |sum T| (N, T the balanced normal and
+   !> tangential forces, what CPRESS and CSHEAR report); the smallest over the pairs that
+   !> carry shear (0: none does).  For one planar joint that stays closed, sum N and
+   !> sum T are the resultants the loads impose whatever F is, so the ratio is the
+   !> limit-equilibrium factor itself; elsewhere it only guides the first two trials.
+   pure real(wp) function mobilized_ratio(model, srm, contact) result(r)
+      type(model_t), intent(in) :: model
+      type(strength_reduction_t), intent(in) :: srm
+      type(contact_state_t), intent(in) :: contact
+      real(wp) :: mu, c, strength, shear, scale
+      integer :: p, i
+      r = 0.0_wp
+      if (.not. allocated(contact%balanced)) return
+      do p = 1, size(model%pairs)
+         if (.not. reduced(model, srm, model%pairs(p)%interaction)) cycle
+         call reduced_strength(model, srm, p, 1.0_wp, mu, c)
+         strength = 0.0_wp
+         shear = 0.0_wp
+         scale = 0.0_wp
+         do i = 1, contact%n
+            if (contact%pair(i) /= p .or. .not. contact%active(i) .or. contact%iseg(i) <= 0) cycle
+            strength = strength + mu*max(contact%balanced(i), 0.0_wp) + c*contact%length(i)*contact%thick(i)
+            shear = shear + contact%fric%balanced(i)
+            scale = scale + abs(contact%fric%balanced(i))
+         end do
+         ! a pair whose shear cancels to round-off carries none
+         if (.not. (abs(shear) > 1.0e-9_wp*scale .and. strength > 0.0_wp)) cycle
+         if (r == 0.0_wp) then
+            r = strength/abs(shear)
+         else
+            r = min(r, strength/abs(shear))
+         end if
+      end do
+   end function mobilized_ratio
 
    !> The tangential laws of every pair at factor f.
    subroutine set_laws(model, srm, contact, f)
