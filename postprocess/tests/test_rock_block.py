@@ -110,3 +110,21 @@ def test_rock_block_without_cohesion(exe, tmp_path, tag):
     with h5py.File(h5) as f:
         F = float(f["steps"][sorted(f["steps"], key=int)[-1]].attrs["factor_of_safety"])
     assert F == pytest.approx(fs, rel=0.01), (F, fs)
+
+
+@pytest.mark.xfail(strict=True, reason="the default probe at the mobilized-strength estimate: trials at "
+                   "F = 1.0756 and 1.0714, from the F = 1 state, fail by active-set cycles (numerical, not a "
+                   "mechanism: 1.0781 holds from the 1.5 bracket), so the search stops at 1.0692, -1.03 %")
+def test_rock_block_default_search(exe, tmp_path):
+    """The crack6 deck without its data line (the search's default first trial): the same
+    1 % as above.  Strict: when the search gets it right, remove the mark."""
+    text = open(os.path.join(ROOT, "inputs", "rock_block_crack6.inp")).read()
+    assert "\n1.5, 100.\n" in text
+    text = text.replace("\n1.5, 100.\n", "\n").replace("INPUT=meshes/",
+                                                        "INPUT=" + os.path.join(ROOT, "inputs", "meshes") + "/")
+    (tmp_path / "d.inp").write_text(text)
+    r = subprocess.run([exe, "-q", "-o", str(tmp_path), str(tmp_path / "d.inp")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with h5py.File(tmp_path / "d.h5") as f:
+        F = float(f["steps/0003"].attrs["factor_of_safety"])
+    assert F == pytest.approx(limit_equilibrium(6.0, 20000.0)[0], rel=0.01), F
