@@ -148,8 +148,10 @@ def main():
         for v in ("dry", "uplift", "drained", "penetration"):
             F, d = two_wedge(v, phi)
             print(f"  {v:12s} F = {F:.4f}   (W = {d['W']:.2f} kN, N' = {d['N']:.2f} kN, T = {d['T']:.2f} kN)")
-        F, d = two_wedge("penetration", phi, crack=1.59462)
-        print(f"  penetration, headwater over the FE's 1.595 m from the heel: F = {F:.4f} (N' = {d['N']:.2f} kN)")
+        # the run's crack: its last open node lies 2.0942 m along the back joint from the
+        # heel (the log's "water entered 1.59462" is that node's projection on the chord)
+        F, d = two_wedge("penetration", phi, crack=2.0942)
+        print(f"  penetration, headwater over the run's 2.094 m from the heel: F = {F:.4f} (N' = {d['N']:.2f} kN)")
 
 
 if __name__ == "__main__":
