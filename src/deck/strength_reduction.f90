@@ -20,8 +20,9 @@ module vemcontact_deck_strength_reduction
 
    public :: read_strength_reduction, reducible
 
-   character(len=*), parameter :: data_help = 'the optional data line is: first trial factor F (default 1.5), '// &
-                                              'largest factor (default 100); both > 1, the first at most the largest'
+   character(len=*), parameter :: data_help = 'the optional data line is: first trial factor F (default: the '// &
+                                              'estimate of the trial at F = 1), largest factor (default 100); '// &
+                                              'both > 1, the first at most the largest'
 
 contains
 

@@ -352,8 +352,10 @@ contains
       end associate
    end subroutine init_state
 
-   !> Step `istep`: its increments, then the post-processing and output of its end.
-   subroutine run_step(model, opts, log, rs, istep, error)
+   !> The increments of step `istep` (*STATIC, *GEOSTATIC): each solved from the last
+   !> converged state, cut back when its contact iteration runs out of iterations, the
+   !> results of every FREQUENCY-th increment written as a frame.
+   subroutine run_increments(model, opts, log, rs, istep, error)
       type(model_t), intent(in) :: model
       type(run_options_t), intent(in) :: opts
       type(logger_t), intent(inout) :: log
@@ -366,26 +368,12 @@ contains
       logical :: ok, several
       integer :: frequency
       character(len=200) :: buf
-      rs%current = istep
       frequency = output_frequency(model, istep)
-      log%step = istep
-      call log%say('step '//step_name(model, istep))
-      call advance_load_state(model%steps(istep), rs%given)
       call ctl%start(model%steps(istep))
       ! one increment (the default): the log as without increments
       several = ctl%dt < ctl%period
       u_start = rs%u
-      if (model%steps(istep)%procedure == procedure_strength_reduction) then
-         ! the loads in force at the end of the previous step (the step has none of its
-         ! own, and amplitudes are not evaluated anew), the trials instead of the increments
-         rs%applied = rs%prev
-         call run_strength_reduction(model, model%steps(istep)%srm, rs%sys, rs%applied, rs%u, rs%contact, log, &
-                                     rs%srm, error)
-         if (allocated(error)) return
-         call say_factor(log, rs%srm)
-         call log%lap('strength reduction')
-      end if
-      do while (.not. ctl%finished() .and. model%steps(istep)%procedure /= procedure_strength_reduction)
+      do while (.not. ctl%finished())
          call ctl%next()
          if (several) then
             write (buf, '(2x,a,i0,a,es12.5,a,es12.5,a)') 'increment ', ctl%increment + 1, ': step time ', &
@@ -431,6 +419,34 @@ contains
             end if
          end if
       end do
+   end subroutine run_increments
+
+   !> Step `istep`: its increments (or the trials of a strength reduction step), then
+   !> the post-processing and output of its end.
+   subroutine run_step(model, opts, log, rs, istep, error)
+      type(model_t), intent(in) :: model
+      type(run_options_t), intent(in) :: opts
+      type(logger_t), intent(inout) :: log
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(out) :: error
+      rs%current = istep
+      log%step = istep
+      call log%say('step '//step_name(model, istep))
+      call advance_load_state(model%steps(istep), rs%given)
+      if (model%steps(istep)%procedure == procedure_strength_reduction) then
+         ! the loads in force at the end of the previous step (the step has none of its
+         ! own, and amplitudes are not evaluated anew), the trials instead of the increments
+         rs%applied = rs%prev
+         call run_strength_reduction(model, model%steps(istep)%srm, rs%sys, rs%applied, rs%u, rs%contact, log, &
+                                     rs%srm, error)
+         if (allocated(error)) return
+         call say_factor(log, rs%srm)
+         call log%lap('strength reduction')
+      else
+         call run_increments(model, opts, log, rs, istep, error)
+         if (allocated(error)) return
+      end if
       rs%prev = rs%applied
       rs%t_start = rs%t_start + model%steps(istep)%period
       if (model%steps(istep)%procedure == procedure_geostatic) then

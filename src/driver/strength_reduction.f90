@@ -19,7 +19,9 @@
 !> A trial fails, and the reason is named in its log line, when
 !> * the contact iteration does not converge (MAXIT iterations, a cycle of its active
 !>   set, a factorization that fails or a solution with non-finite values: the matrix
-!>   of a mechanism, every node of the joint slipping, is singular);
+!>   of a mechanism, every node of the joint slipping, is singular); MAXIT and a cycle
+!>   only after the same factor was tried again in four steps from the last converged
+!>   trial (cut_back), as the increments of a *STATIC step cut back;
 !> * it converges to a displacement from the base state larger than `runaway` times
 !>   the scale of the base state (its largest |U|, or a millionth of the model's size
 !>   when that is zero): a body in frictional equilibrium moves by elastic deformation
@@ -45,12 +47,15 @@ module vemcontact_driver_strength_reduction
 
    !> a converged displacement beyond this many times the base state's scale has slid
    real(wp), parameter :: runaway = 1.0e3_wp
+   !> the reasons of the failures that a cut-back may cure
+   character(len=*), parameter :: reason_maxit = 'no convergence in MAXIT iterations', &
+                                  reason_cycle = 'active set cycles'
 
    !> The trials of a strength reduction step, in trial order, and the factor found.
    type :: srm_result_t
       real(wp), allocatable :: f(:), u_char(:)
       integer, allocatable :: converged(:), iterations(:)
-      character(len=48), allocatable :: reason(:)   !< 'converged' or what ended the trial
+      character(len=64), allocatable :: reason(:)   !< 'converged' or what ended the trial
       real(wp) :: tolerance = 0.0_wp
       real(wp) :: f_lower = 0.0_wp   !< the largest factor that converged: the factor of safety
       real(wp) :: f_upper = 0.0_wp   !< the smallest that failed (+Inf: none up to the largest)
@@ -108,7 +113,7 @@ contains
       real(wp) :: f, scale, uc
       logical :: ok
       integer :: iters
-      character(len=48) :: why
+      character(len=64) :: why
       search = srm_search_t(tolerance=srm%tolerance, f_first=srm%f_first, f_max=srm%f_max)
       allocate (res%f(0), res%u_char(0), res%converged(0), res%iterations(0), res%reason(0))
       res%tolerance = srm%tolerance
@@ -128,13 +133,21 @@ contains
          call set_laws(model, srm, contact, f)
          call run_trial(model, sys, applied, u, u_base, scale, contact, ok, iters, why, error)
          if (allocated(error)) return
+         ! a contact iteration that ran out of iterations or cycled may only have been
+         ! asked too large a step from the last converged trial: again in smaller ones
+         if (.not. ok .and. allocated(u_best) .and. (why == reason_maxit .or. why == reason_cycle)) then
+            u = u_best
+            contact = best
+            call cut_back(model, srm, sys, applied, u, u_base, scale, contact, search%f_ok, f, ok, iters, why, error)
+            if (allocated(error)) return
+         end if
          uc = 0.0_wp
          if (ok) uc = char_displacement(model, srm, u, u_base)
          res%f = [res%f, f]
          res%u_char = [res%u_char, uc]
          res%converged = [res%converged, merge(1, 0, ok)]
          res%iterations = [res%iterations, iters]
-         res%reason = [character(len=48) :: res%reason, why]
+         res%reason = [character(len=64) :: res%reason, why]
          res%factorizations = res%factorizations + sys%factorizations
          call log%say(trial_line(size(res%f), f, ok, why, iters, uc))
          ! the estimate that the probes bracket, unless the deck gives the first trial
@@ -198,17 +211,47 @@ contains
       why = failure_reason(err%message, iters, model%controls%max_iterations)
    end subroutine run_trial
 
+   !> A trial at f whose contact iteration did not converge (MAXIT, a cycle), again in
+   !> `nsub` equal steps of the factor from the last converged trial's state at f_ok (u,
+   !> contact on entry), each from the one before: the increments' cut-back, a quarter
+   !> (CalculiX's D_F).  ok when every step converges; iters adds their iterations; the
+   !> reason says "(cut back)".
+   subroutine cut_back(model, srm, sys, applied, u, u_base, scale, contact, f_ok, f, ok, iters, why, error)
+      type(model_t), intent(in) :: model
+      type(strength_reduction_t), intent(in) :: srm
+      type(linear_system_t), intent(inout) :: sys
+      type(load_state_t), intent(in) :: applied
+      real(wp), intent(inout) :: u(:)
+      real(wp), intent(in) :: u_base(:), scale, f_ok, f
+      type(contact_state_t), intent(inout) :: contact
+      logical, intent(out) :: ok
+      integer, intent(inout) :: iters
+      character(len=*), intent(out) :: why
+      type(error_t), allocatable, intent(out) :: error
+      integer, parameter :: nsub = 4
+      integer :: k, it
+      ok = .false.
+      do k = 1, nsub
+         call set_laws(model, srm, contact, f_ok + (f - f_ok)*real(k, wp)/real(nsub, wp))
+         call run_trial(model, sys, applied, u, u_base, scale, contact, ok, it, why, error)
+         if (allocated(error)) return
+         iters = iters + it
+         if (.not. ok) exit
+      end do
+      why = trim(why)//' (cut back)'
+   end subroutine cut_back
+
    !> What ended a trial whose solve failed, from its message.
    pure function failure_reason(msg, iters, maxit) result(why)
       character(len=*), intent(in) :: msg
       integer, intent(in) :: iters, maxit
-      character(len=48) :: why
+      character(len=64) :: why
       if (index(msg, 'NaN') > 0 .or. index(msg, 'singular') > 0 .or. index(msg, 'positive') > 0) then
          why = 'singular matrix (a mechanism)'
       else if (index(msg, 'cycle') > 0) then
-         why = 'active set cycles'
+         why = reason_cycle
       else if (iters >= maxit) then
-         why = 'no convergence in MAXIT iterations'
+         why = reason_maxit
       else if (index(msg, 'condition') > 0) then
          why = 'ill-conditioned matrix (a mechanism)'
       else
@@ -245,10 +288,10 @@ contains
          end do
          ! a pair whose shear cancels to round-off carries none
          if (.not. (abs(shear) > 1.0e-9_wp*scale .and. strength > 0.0_wp)) cycle
-         if (r == 0.0_wp) then
-            r = strength/abs(shear)
-         else
+         if (r > 0.0_wp) then
             r = min(r, strength/abs(shear))
+         else
+            r = strength/abs(shear)
          end if
       end do
    end function mobilized_ratio
@@ -314,7 +357,7 @@ contains
       character(len=:), allocatable :: s
       character(len=200) :: b
       if (ok) then
-         write (b, '(4x,a,i0,a,f12.6,a,i0,a,es12.5)') 'trial ', k, '  F = ', f, '  converged  (', iters, &
+         write (b, '(4x,a,i0,a,f12.6,a,i0,a,es12.5)') 'trial ', k, '  F = ', f, '  '//trim(why)//'  (', iters, &
             ' iterations)  u_char = ', uc
       else
          write (b, '(4x,a,i0,a,f12.6,a,i0,a)') 'trial ', k, '  F = ', f, '  failed: '//trim(why)//'  (', iters, &
