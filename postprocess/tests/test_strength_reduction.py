@@ -251,6 +251,14 @@ def test_interaction_without_friction(exe, tmp_path):
     assert "smooth.inp:" in r.stderr and "surface interaction SMOOTH has no friction to reduce" in r.stderr, r.stderr
 
 
+def test_interaction_of_no_pair(exe, tmp_path):
+    """A frictional interaction that no contact pair uses: named, or the only one, exit 1."""
+    extra = "*SURFACE INTERACTION, NAME=LOOSE\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n*FRICTION\n0.5"
+    deck = dam_deck(tmp_path / "loose.inp", srm="*STRENGTH REDUCTION, INTERACTION=LOOSE", model_extra=extra)
+    _, r = run(exe, deck, tmp_path, code=1)
+    assert "loose.inp:" in r.stderr and "no *CONTACT PAIR uses the surface interaction LOOSE" in r.stderr, r.stderr
+
+
 def test_first_step_and_no_friction(exe, tmp_path):
     """In the first step (no state to reduce), outside a step, without friction: exit 1."""
     deck = tmp_path / "first.inp"
@@ -266,7 +274,7 @@ def test_first_step_and_no_friction(exe, tmp_path):
     deck.write_text(text.replace("*FRICTION\n", "").replace(f"{float(MU)!r}\n*CONTACT", "*CONTACT")
                     .replace("BASENODES, 1, 2", "BASENODES, 1, 2\n1, 1"))
     _, r = run(exe, deck, tmp_path, code=1)
-    assert "frictionless.inp:" in r.stderr and "no surface interaction has friction to reduce" in r.stderr
+    assert "frictionless.inp:" in r.stderr and "no surface interaction of a contact pair has friction" in r.stderr
 
 
 def test_rerun_removes_stale_tables(exe, tmp_path):

@@ -60,9 +60,10 @@ contains
       call get_param(kw, 'INTERACTION', val, found)
       if (found) call read_interaction_name(p, model, val)
       if (.not. found) then
-         if (.not. any([(reducible(model, stat), stat=1, p%ninter)])) &
-            call err_here(p, 'no surface interaction has friction to reduce', &
-                          'add *FRICTION (mu, and COHESION=c if any) under the *SURFACE INTERACTION of the joint')
+         if (.not. any([(reducible(model, stat) .and. used(p, model%interactions(stat)%name), stat=1, p%ninter)])) &
+            call err_here(p, 'no surface interaction of a contact pair has friction to reduce', &
+                          'add *FRICTION (mu, and COHESION=c if any) under the *SURFACE INTERACTION of the joint''s '// &
+                          '*CONTACT PAIR')
       end if
       call get_param(kw, 'TOLERANCE', val, found)
       if (found) then
@@ -95,8 +96,23 @@ contains
          call err_here(p, 'surface interaction '//name//' has no friction to reduce', &
                        'it needs *FRICTION with mu > 0 or COHESION=c > 0 (ROUGH cannot be reduced)')
          p%cur%srm%interaction = 0
+      else if (.not. used(p, name)) then
+         call err_here(p, 'no *CONTACT PAIR uses the surface interaction '//name, &
+                       'the strength reduction acts on the joints of the contact pairs with INTERACTION='//name)
+         p%cur%srm%interaction = 0
       end if
    end subroutine read_interaction_name
+
+   !> Whether a *CONTACT PAIR read so far uses the interaction `name`.
+   pure logical function used(p, name)
+      type(deck_parser_t), intent(in) :: p
+      character(len=*), intent(in) :: name
+      integer :: k
+      used = .false.
+      do k = 1, p%npair
+         if (p%pair_refs(k)%interaction == name) used = .true.
+      end do
+   end function used
 
    !> NSET=name: the nodes of the characteristic displacement.
    subroutine read_nset_name(p, model, name)

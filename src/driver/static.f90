@@ -430,6 +430,7 @@ contains
       type(run_state_t), intent(inout) :: rs
       integer, intent(in) :: istep
       type(error_t), allocatable, intent(out) :: error
+      character(len=200) :: buf
       rs%current = istep
       log%step = istep
       call log%say('step '//step_name(model, istep))
