@@ -113,7 +113,7 @@ def test_rock_block_without_cohesion(exe, tmp_path, tag):
 
 
 @pytest.mark.xfail(strict=True, reason="the default probe at the mobilized-strength estimate: trials at "
-                   "F = 1.0756 and 1.0714, from the F = 1 state, fail by active-set cycles (numerical, not a "
+                   "F = 1.0756 and 1.0714, from the F = 1 state, fail by active-set cycles even cut back (numerical, not a "
                    "mechanism: 1.0781 holds from the 1.5 bracket), so the search stops at 1.0692, -1.03 %")
 def test_rock_block_default_search(exe, tmp_path):
     """The crack6 deck without its data line (the search's default first trial): the same
