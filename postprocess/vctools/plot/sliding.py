@@ -126,16 +126,18 @@ def plot_srm(path: str, out: str, step: int = 0, title: str | None = None, units
 
 # ------------------------------------------------------------------ joint state
 def chain_order(xy: np.ndarray) -> np.ndarray:
-    """The slave nodes of a joint in order along it, from the heel: of the two nodes
-    farthest apart (the ends of an open joint), the higher one (a tie: the one of smaller
-    x, upstream in the scenes' convention), then each next node the nearest unvisited one."""
+    """The slave nodes of a joint in order along it, from the heel.  The ends: the node
+    farthest from the first node, and the node farthest from that one (the two ends of an
+    open joint); of the two the higher one is the heel (a tie: the one of smaller x,
+    upstream in the scenes' convention).  Then each next node is the nearest unvisited
+    one.  O(n) memory, O(n^2) time (a joint has thousands of nodes at most)."""
+    xy = np.asarray(xy, dtype=float)
     n = len(xy)
     if n <= 1:
         return np.arange(n)
-    d2 = ((xy[:, None, :] - xy[None, :, :]) ** 2).sum(-1)
-    i, j = np.unravel_index(np.argmax(d2), d2.shape)
-    span = float(np.sqrt(d2[i, j]))
-    tie = 1e-9 * span
+    i = int(np.argmax(((xy - xy[0]) ** 2).sum(1)))
+    j = int(np.argmax(((xy - xy[i]) ** 2).sum(1)))
+    tie = 1e-9 * float(np.sqrt(((xy[i] - xy[j]) ** 2).sum()))
     if abs(xy[i, 1] - xy[j, 1]) > tie:
         start = i if xy[i, 1] > xy[j, 1] else j
     else:
@@ -145,7 +147,7 @@ def chain_order(xy: np.ndarray) -> np.ndarray:
     left[start] = False
     for _ in range(n - 1):
         cand = np.flatnonzero(left)
-        k = cand[np.argmin(d2[order[-1], cand])]
+        k = int(cand[np.argmin(((xy[cand] - xy[order[-1]]) ** 2).sum(1))])
         order.append(k)
         left[k] = False
     return np.asarray(order)
