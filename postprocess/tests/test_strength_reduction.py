@@ -340,3 +340,34 @@ def test_two_processes(exe, tmp_path):
     a, b = res["serial"], res["np2"]
     assert a["converged"].tolist() == b["converged"].tolist()
     assert abs(a["F_lower"] - b["F_lower"]) <= a["tolerance"] * a["F_lower"]
+
+
+def test_runaway_detected(exe, tmp_path):
+    """A soft fill (E = 1e5 Pa, one element between the dam's upstream crest and a held
+    wall) adds a little resistance: past the joint's limit the dam slides until the fill
+    holds it, centimetres instead of microns.  Trials whose converged displacement
+    exceeds 1000 times the base state's largest |U| fail as "displacement grows without
+    bound"; the factor is at least the joint's alone, and every converged trial stayed
+    within that bound."""
+    deck = dam_deck(tmp_path / "fill.inp", srm_data="1.5, 100.")
+    text = deck.read_text()
+    # nx = 6, ny = 4: the dam's upstream nodes at y = 4.5 and 6 are 22 and 29
+    text = text.replace("*ELEMENT, TYPE=CPE4, ELSET=DAM", "9001, -1., 4.5\n9002, -1., 6.\n*ELEMENT, TYPE=CPE4, ELSET=DAM", 1)
+    text = text.replace("*ELEMENT, TYPE=CPE4, ELSET=BASE",
+                        "*ELEMENT, TYPE=CPE4, ELSET=FILL\n9001, 9001, 22, 29, 9002\n*ELEMENT, TYPE=CPE4, ELSET=BASE", 1)
+    text = text.replace("*SURFACE INTERACTION, NAME=JOINT", "*MATERIAL, NAME=FILL\n*ELASTIC\n1.e5, 0.2\n"
+                        "*SOLID SECTION, ELSET=FILL, MATERIAL=FILL, FORMULATION=VEM\n1.0\n"
+                        "*SURFACE INTERACTION, NAME=JOINT", 1)
+    text = text.replace("BASENODES, 1, 2\n", "BASENODES, 1, 2\n9001, 1, 2\n9002, 1, 2\n", 1)
+    deck.write_text(text)
+    h5, _ = run(exe, deck, tmp_path)
+    want, fs, srm, _ = limit_equilibrium(h5)
+    with open(tmp_path / "fill_srm_0003.csv", newline="") as fh:
+        reasons = [r["reason"] for r in csv.DictReader(fh)]
+    assert "displacement grows without bound" in reasons, reasons
+    assert fs >= want * (1 - 5e-3), (fs, want)
+    with h5py.File(h5) as f:
+        base = np.max(np.abs(f["steps/0002/U"][:]))      # no geostatic step: U is absolute
+    ok = srm["converged"] == 1
+    # u_char is a node's |U - U_start|, the bound is on each component: sqrt(2)
+    assert np.all(srm["u_char"][ok] <= 1e3 * np.sqrt(2.0) * base * (1 + 1e-12))

@@ -133,12 +133,14 @@ contains
          call set_laws(model, srm, contact, f)
          call run_trial(model, sys, applied, u, u_base, scale, contact, ok, iters, why, error)
          if (allocated(error)) return
+         res%factorizations = res%factorizations + sys%factorizations
          ! a contact iteration that ran out of iterations or cycled may only have been
          ! asked too large a step from the last converged trial: again in smaller ones
          if (.not. ok .and. allocated(u_best) .and. (why == reason_maxit .or. why == reason_cycle)) then
             u = u_best
             contact = best
-            call cut_back(model, srm, sys, applied, u, u_base, scale, contact, search%f_ok, f, ok, iters, why, error)
+            call cut_back(model, srm, sys, applied, u, u_base, scale, contact, search%f_ok, f, ok, iters, why, &
+                          res%factorizations, error)
             if (allocated(error)) return
          end if
          uc = 0.0_wp
@@ -148,7 +150,6 @@ contains
          res%converged = [res%converged, merge(1, 0, ok)]
          res%iterations = [res%iterations, iters]
          res%reason = [character(len=64) :: res%reason, why]
-         res%factorizations = res%factorizations + sys%factorizations
          call log%say(trial_line(size(res%f), f, ok, why, iters, uc))
          ! the estimate that the probes bracket, unless the deck gives the first trial
          if (search%trials == 0 .and. ok .and. .not. srm%first_given) &
@@ -216,7 +217,7 @@ contains
    !> contact on entry), each from the one before: the increments' cut-back, a quarter
    !> (CalculiX's D_F).  ok when every step converges; iters adds their iterations; the
    !> reason says "(cut back)".
-   subroutine cut_back(model, srm, sys, applied, u, u_base, scale, contact, f_ok, f, ok, iters, why, error)
+   subroutine cut_back(model, srm, sys, applied, u, u_base, scale, contact, f_ok, f, ok, iters, why, nfact, error)
       type(model_t), intent(in) :: model
       type(strength_reduction_t), intent(in) :: srm
       type(linear_system_t), intent(inout) :: sys
@@ -227,6 +228,7 @@ contains
       logical, intent(out) :: ok
       integer, intent(inout) :: iters
       character(len=*), intent(out) :: why
+      integer, intent(inout) :: nfact   !< numeric factorizations, the steps' added
       type(error_t), allocatable, intent(out) :: error
       integer, parameter :: nsub = 4
       integer :: k, it
@@ -235,6 +237,7 @@ contains
          call set_laws(model, srm, contact, f_ok + (f - f_ok)*real(k, wp)/real(nsub, wp))
          call run_trial(model, sys, applied, u, u_base, scale, contact, ok, it, why, error)
          if (allocated(error)) return
+         nfact = nfact + sys%factorizations
          iters = iters + it
          if (.not. ok) exit
       end do
