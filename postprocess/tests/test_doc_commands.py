@@ -108,7 +108,7 @@ def argv(cmd, exe):
 @pytest.fixture(scope="module")
 def runs(vemcontact, tmp_path_factory):
     out = tmp_path_factory.mktemp("doccmd")
-    for deck in ("dam_joint", "hertz_389_vem", "hertz_329_fem2", "block_selfweight"):
+    for deck in ("dam_joint", "hertz_389_vem", "hertz_329_fem2", "block_selfweight", "rock_block_crack3"):
         subprocess.run([vemcontact, "-q", "-o", str(out / deck), os.path.join(ROOT, "inputs", deck + ".inp")], check=True)
     return out
 
@@ -147,6 +147,7 @@ def substitutions(runs, tmp, model):
             ("OUT_DIR_OR_CSV", str(runs / "hertz_389_vem")),
             ("RUN.h5", str(runs / "hertz_389_vem" / "hertz_389_vem.h5")),
             ("RESULT.h5", str(runs / "hertz_389_vem" / "hertz_389_vem.h5")), ("REFERENCE.h5", ref),
+            ("SRM.h5", str(runs / "rock_block_crack3" / "rock_block_crack3.h5")),
             ("SCENE.toml", str(scene)), ("DECK.inp", str(deck)), ("FILE.msh", str(msh)),
             ("postprocess/examples/", os.path.join(ROOT, "postprocess", "examples") + "/")]
 
@@ -202,10 +203,13 @@ def test_run_main_mirror(runs, tmp_path):
 
 def test_python_api_examples(runs, vemcontact, tmp_path, monkeypatch):
     """The Python blocks of docs/python-api.md run: the reading example on the dam run (its
-    paths replaced by the run's), the deck-writing example as it is."""
+    paths replaced by the run's), the sliding pictures on the rock-block run, the
+    deck-writing example as it is."""
     text = open(os.path.join(ROOT, "docs", "python-api.md")).read()
     blocks = re.findall(r"```python\n(.*?)```", text, re.S)
-    assert len(blocks) == 2
+    assert len(blocks) == 3
+    sliding = blocks.pop(1).replace('"out/rb/rock_block_crack3.h5"',
+                                    repr(str(runs / "rock_block_crack3" / "rock_block_crack3.h5")))
     monkeypatch.setenv("VEMCONTACT_EXE", vemcontact)
     monkeypatch.chdir(tmp_path)
     read = blocks[0].replace('vctools.run("inputs/dam_joint.inp", out="out/dam")',
@@ -213,6 +217,9 @@ def test_python_api_examples(runs, vemcontact, tmp_path, monkeypatch):
     ns = {}
     exec(compile(read, "python-api.md", "exec"), ns)
     assert ns["s"].name == "RESERVOIR" and ns["pair"]["CPRESS"].max() > 0
+    ns = {}
+    exec(compile(sliding, "python-api.md", "exec"), ns)
+    assert ns["d"]["factor_of_safety"] > 1 and (tmp_path / "fs.png").exists() and (tmp_path / "joint.png").exists()
     ns = {}
     exec(compile(blocks[1], "python-api.md", "exec"), ns)
     # the pentagon under a load of -1e3 at node 3 (index 2) moves that node down

@@ -20,7 +20,10 @@ def test_deck_runs(deck, tmp_path):
     job = os.path.splitext(os.path.basename(deck))[0]
     log = (tmp_path / f"{job}.log").read_text()
     its = [int(m) for m in re.findall(r"contact converged in (\d+) iterations", log)]
-    assert all(i <= 8 for i in its), its
+    # pressure penetration solves the contact once per pass and the log counts the
+    # iterations of all passes: the bound holds per contact solve
+    passes = max([int(m) for m in re.findall(r"contact solved (\d+) times", log)] or [1])
+    assert all(i <= 8 * passes for i in its), its
     assert (tmp_path / f"{job}.pvd").exists() and (tmp_path / f"{job}.h5").exists()
 
 

@@ -36,11 +36,14 @@ RHO = 2400.0       # concrete, kg/m^3 (ssnp142)
 
 
 def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, water=None, uplift=None,
-               two_steps=False, etype="CPE4", pair="NODE TO SURFACE, SMALL SLIDING", extra=None):
+               two_steps=False, etype="CPE4", pair="NODE TO SURFACE, SMALL SLIDING", extra=None, friction=None,
+               after=None):
     """A deck of the quadrilateral block `poly` = heel, toe, top right, top left
     (heel at (0, 0), toe at (B, 0), upstream face x = 0) meshed nx x ny CPE4 on a rigid
     base strip; `water` = reservoir depth on the upstream face (None: dry); `uplift` =
-    the *UPLIFT text (keyword line and data lines) or None."""
+    the *UPLIFT text (keyword line and data lines) or None; `friction` = the *FRICTION
+    lines of the joint (then the base is not held horizontally: the friction carries the
+    thrust); `after` = the text of further steps."""
     p = np.asarray(poly, float)
     nodes, elems = [], []
 
@@ -83,8 +86,10 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
         L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD"]
     else:
         L += ["*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{float(penalty)!r}"]
+    if friction is not None:
+        L += [friction]
     L += [f"*CONTACT PAIR, INTERACTION=JOINT, TYPE={pair}", "SLAVE, MASTER",
-          "*BOUNDARY", "BASENODES, 1, 2", "FOOT, 1"]
+          "*BOUNDARY", "BASENODES, 1, 2"] + (["FOOT, 1"] if friction is None else [])
     step = ["*STEP", "*STATIC", "*DLOAD", f"BLOCK, GRAV, {float(G)!r}, 0., -1."]
     if two_steps:
         L += step + ["*END STEP"]
@@ -96,6 +101,8 @@ def block_deck(path, poly, nx, ny, *, hard=False, penalty=1.0e8, young=1.0e13, w
     if extra is not None:
         step += [extra]
     L += step + ["*END STEP"]
+    if after is not None:
+        L += [after]
     path.write_text("\n".join(L) + "\n")
     return path
 
@@ -252,6 +259,78 @@ def test_pressure_penetration_matches_gravity_method(exe, tmp_path, nx):
     h50, _ = run(exe, block_deck(tmp_path / "lin.inp", SSNP142, nx, 20, water=9.0, uplift=up0), tmp_path)
     c0 = pair(h50)
     assert np.argmax(c0["STATUS"] == 1) < k
+
+
+MOHR_COULOMB = "*FRICTION, COHESION=100000.\n1.0"     # phi = 45 deg, c = 100 kPa
+
+
+def penetration_on_friction(exe, tmp_path, nx, after=None):
+    """ssnp142 with pressure penetration on a Mohr-Coulomb joint (phi = 45 deg, c = 100 kPa)
+    instead of the horizontal hold: the friction carries the reservoir's thrust."""
+    up = "*UPLIFT, INTERACTION=JOINT, UNIT WEIGHT=9810, PENETRATION\n0., 0., 9.\n5., 0., 0."
+    deck = block_deck(tmp_path / "ppf.inp", SSNP142, nx, 20, water=9.0, uplift=up, friction=MOHR_COULOMB,
+                      after=after)
+    return run(exe, deck, tmp_path)
+
+
+@pytest.mark.parametrize("nx", [20, 40])
+def test_pressure_penetration_on_a_frictional_joint(exe, tmp_path, nx):
+    """The same crack as with the hold (within a mesh cell of the gravity method) when a
+    Mohr-Coulomb joint carries the thrust: the shear acts at base level, so the moment
+    balance, and with it the no-tension crack, are the gravity method's.  The joint's shear
+    resultant is the reservoir's thrust, and the water is the full head over the open part
+    and the distribution restarted at the tip beyond."""
+    h5, log = penetration_on_friction(exe, tmp_path, nx)
+    c = pair(h5)
+    x = c["coordinates"][:, 0]
+    closed = c["STATUS"] != 0
+    k = np.argmax(closed)
+    assert k > 0 and closed[k:].all(), "one crack from the heel, closed beyond it"
+    assert set(np.unique(c["STATUS"][k:])) <= {3, 4}, "closed nodes stick or slip"
+    a_fe = x[k - 1]
+    assert abs(a_fe - gravity_method_crack(SSNP142, 9.0, 5.0)) <= 5.0 / nx, a_fe
+    assert np.allclose(c["CFLUIDP"][:k], GW * 9.0, rtol=1e-13)
+    assert np.allclose(c["CFLUIDP"][k:], GW * 9.0 * (5.0 - x[k:]) / (5.0 - a_fe), rtol=1e-12, atol=1e-9)
+    # horizontal equilibrium of the block: the shear resultant is the thrust H, to the
+    # contact iteration's residual (1e-10 of the forces); 1e-8
+    thrust = 0.5 * GW * 9.0**2
+    assert abs(np.sum(c["CSHEAR"] * c["CNAREA"])) == pytest.approx(thrust, rel=1e-8)
+    # nodes within the strength: |CSHEAR| <= c + mu CPRESS.  CSHEAR is the force the
+    # balance leaves at the node, which meets the law's bound to the iteration's
+    # tolerance: measured 4.9e-7 above it at the crack-tip node (nx = 40); 1e-6
+    assert (np.abs(c["CSHEAR"][k:]) <= (1.0e5 + c["CPRESS"][k:]) * (1 + 1e-6)).all()
+
+
+@pytest.mark.parametrize("nx", [20, 40])
+def test_strength_reduction_on_a_cracked_base(exe, tmp_path, nx):
+    """Strength reduction on the cracked ssnp142 base (phi = 45 deg, c = 100 kPa): the
+    cohesion acts on the closed length only, so the factor is (c L_closed + N' tan phi)/H
+    with the run's own crack (L_closed = sum CNAREA of the closed nodes, N' = sum CPRESS
+    CNAREA, both at F = 1): measured -0.04 % (nx = 20 and 40); the bisection's
+    tolerance is 1e-3, so 2e-3.  The crack does not change during the reduction (the base
+    pressure of a rigid dam is fixed by statics).  Against the no-tension gravity method
+    (computed here, 1.3755) the factor differs by what one mesh cell of crack changes:
+    (c + gamma_w h_w tan phi / 2) h / H; uncracked, the base would give 2.6288."""
+    h5, _ = penetration_on_friction(exe, tmp_path, nx, after="*STEP\n*STRENGTH REDUCTION\n*END STEP")
+    c1, c2 = pair(h5, "0001"), pair(h5, "0002")
+    area, closed = c1["CNAREA"], c1["STATUS"] != 0
+    assert np.array_equal(c2["STATUS"] != 0, closed)
+    thrust = 0.5 * GW * 9.0**2
+    n_eff = np.sum(c1["CPRESS"] * area)
+    with h5py.File(h5) as f:
+        F = float(f["steps/0002"].attrs["factor_of_safety"])
+    assert F == pytest.approx((1.0e5 * area[closed].sum() + n_eff * 1.0) / thrust, rel=2e-3)
+    # the gravity method: crack a, uplift full head over it then linear, N' = W - U
+    a = gravity_method_crack(SSNP142, 9.0, 5.0)
+    P = np.asarray(SSNP142, float)
+    W = RHO * G * 0.5 * abs(np.sum(P[:, 0] * np.roll(P[:, 1], -1) - np.roll(P[:, 0], -1) * P[:, 1]))
+    U = GW * 9.0 * (a + 0.5 * (5.0 - a))
+    fs_gm = (1.0e5 * (5.0 - a) + (W - U) * 1.0) / thrust
+    assert fs_gm == pytest.approx(1.3755, abs=1e-4)
+    h = 5.0 / nx
+    assert abs(F - fs_gm) <= (1.0e5 + 0.5 * GW * 9.0) * h / thrust
+    uncracked = (1.0e5 * 5.0 + (W - 0.5 * GW * 9.0 * 5.0)) / thrust
+    assert uncracked == pytest.approx(2.6288, abs=1e-4) and F < 0.6 * uncracked
 
 
 def test_crack_past_the_drains(exe, tmp_path):

@@ -137,11 +137,13 @@ def _names(ds) -> list[str]:
 
 class Table:
     """Columns of equal length read from an HDF5 group (one dataset per column);
-    `t["CPRESS"]`, `t.columns`, `len(t)`, `t.rows()` (dicts), `t.to_pandas()`."""
+    `t["CPRESS"]`, `t.columns`, `len(t)`, `t.rows()` (dicts), `t.to_pandas()`; `t.attrs` the
+    group's attributes (a contact pair's friction_coefficient and cohesion, ...)."""
 
-    def __init__(self, columns: dict, name: str = ""):
+    def __init__(self, columns: dict, name: str = "", attrs: dict | None = None):
         self.data = dict(columns)
         self.name = name
+        self.attrs = dict(attrs or {})
 
     @property
     def columns(self) -> list[str]:
@@ -235,7 +237,9 @@ class Step:
     """One step: `fields` (every dataset of the step group: U, S_element, S_node,
     E_element, E_node, RF, RF_total, ERROR_INDICATOR, ...), `rf_sets` (constrained
     node set -> RF total), `contact` (pair number -> Table), `iterations` (Table of
-    the contact iterations, or None), `attrs` (error_estimate, energy_norm, ...)."""
+    the contact iterations, or None), `attrs` (error_estimate, energy_norm,
+    factor_of_safety, ...), `strength_reduction` (Table of the trials F, converged,
+    u_char, iterations of a *STRENGTH REDUCTION step, or None)."""
     number: int
     name: str
     time: float
@@ -244,6 +248,7 @@ class Step:
     contact: dict
     iterations: Table | None
     attrs: dict
+    strength_reduction: Table | None = None
 
     def __getitem__(self, key: str) -> np.ndarray:
         if key not in self.fields:
@@ -270,12 +275,16 @@ def _read_group_arrays(g) -> dict:
     return {k: g[k][...] for k in g if isinstance(g[k], h5py.Dataset)}
 
 
+def _attrs(g) -> dict:
+    return {k: (_text(v) if isinstance(v, (bytes, str)) or (isinstance(v, np.ndarray) and v.dtype.kind == "S")
+                else (v.item() if isinstance(v, np.ndarray) and v.size == 1 else v))
+            for k, v in g.attrs.items()}
+
+
 def _read_step(number: int, g) -> Step:
     import h5py
 
-    attrs = {k: (_text(v) if isinstance(v, (bytes, str)) or (isinstance(v, np.ndarray) and v.dtype.kind == "S")
-                 else (v.item() if isinstance(v, np.ndarray) and v.size == 1 else v))
-             for k, v in g.attrs.items()}
+    attrs = _attrs(g)
     fields = _read_group_arrays(g)
     rf_sets = {}
     if "RF_sets" in g:
@@ -290,10 +299,14 @@ def _read_step(number: int, g) -> Step:
                 iterations = Table(_read_group_arrays(sub), f"step {number} contact iterations")
             elif key.startswith("pair_"):
                 k = int(key[5:])
-                contact[k] = Table(_read_group_arrays(sub), f"step {number} contact pair {k}")
+                contact[k] = Table(_read_group_arrays(sub), f"step {number} contact pair {k}", _attrs(sub))
+    srm = None
+    if "strength_reduction" in g:
+        srm = Table(_read_group_arrays(g["strength_reduction"]), f"step {number} strength reduction",
+                    _attrs(g["strength_reduction"]))
     return Step(number=number, name=attrs.pop("name", f"Step-{number}"), time=float(attrs.pop("time", number)),
                 fields=fields, rf_sets=rf_sets, contact=dict(sorted(contact.items())), iterations=iterations,
-                attrs=attrs)
+                attrs=attrs, strength_reduction=srm)
 
 
 class Result:
@@ -384,6 +397,25 @@ class Result:
     @property
     def last(self) -> Step:
         return self.step(-1)
+
+    # ---------------------------------------------------------------- sliding safety
+    def plot_srm(self, out: str, step: int = 0, title: str | None = None) -> dict:
+        """F against u_char of a *STRENGTH REDUCTION step (0: the last one) drawn to `out`,
+        failed trials marked, the factor of safety as a line; returns the arrays drawn
+        (F, u_char, converged, iterations) and factor_of_safety, tolerance, F_lower, F_upper."""
+        from vctools.plot.sliding import plot_srm
+
+        return plot_srm(self.path, out, step, title=title)
+
+    def plot_joint(self, out: str, step: int = 0, pair: int = 1, mu: float | None = None,
+                   cohesion: float | None = None, title: str | None = None) -> dict:
+        """The state along contact pair `pair` of a step (0: the last) drawn to `out`:
+        CPRESS, CFLUIDP, |CSHEAR| against c + mu CPRESS, STATUS colours; returns the arrays
+        drawn (s from the heel, CPRESS, CFLUIDP, shear, strength, STATUS, ...).  mu and c
+        come from the pair's attributes unless given."""
+        from vctools.plot.sliding import plot_joint
+
+        return plot_joint(self.path, out, step, pair, mu, cohesion, title=title)
 
     def __repr__(self) -> str:
         return (f"Result({self.path!r}: {self.mesh.nnode} nodes, {self.mesh.nelem} elements, steps "

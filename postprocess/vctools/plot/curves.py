@@ -4,6 +4,8 @@
   vc-curves deflection RUN... [--exact 0.3] [-o FILE]
   vc-curves peak       RUN... [--hertz P,R,E1,NU1,E2,NU2 | --exact P0] [-o FILE]
   vc-curves iterations RUN... [--label L ...] [--paper-table1] [-o FILE] [--markdown FILE]
+  vc-curves srm        JOB.h5 [--step N] [-o FILE]
+  vc-curves joint      JOB.h5 [--step N] [--pair K] [--mu MU] [--cohesion C] [-o FILE]
 
 vc-curves is installed with the package (pip install ./postprocess); without it,
 `python -m vctools.plot.curves` is the same command.  `pressure` is another name of
@@ -28,6 +30,16 @@ iterations  peak pressure per active-set iteration from JOB.log (the paper's
             Table 1), one series per run; the penalty slope K of each run is
             read back from the log (pressure / penetration).  Prints the table
             as Markdown.
+srm         the strength-reduction curve of a *STRENGTH REDUCTION step (default:
+            the last one): F against the characteristic displacement u_char of
+            each trial, trials without equilibrium as crosses, the factor of
+            safety as a line (docs/sliding-safety.md).
+joint       the state along a contact pair (default 1) in a step (default: the
+            last): CPRESS and the water pressure CFLUIDP, |CSHEAR| against the
+            strength c + mu CPRESS, against the arc length from the heel (the
+            higher end of the joint); points coloured open / stick / slip.  mu and
+            c are the pair's values in force in that step (HDF5 attributes);
+            --mu/--cohesion give them for files without.
 
 Errors (a missing file, a CSV without the columns, a log without contact
 iterations) are one line on stderr and exit status 1.
@@ -43,6 +55,7 @@ import numpy as np
 
 from vctools.cli import entry, positive_int
 from vctools.paper.runs import ResultError, read_contact, read_h5, read_log
+from vctools.plot.sliding import plot_joint, plot_srm
 
 #: the paper's Table 1: peak normal contact traction per penalty iteration
 #: (600 elements), for omega_N = 1e5, 1e4, 1e3; compressive, hence negative.
@@ -356,7 +369,7 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="vc-curves", description=doc[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter,
                                 epilog="\n\n".join(doc[1:]))
-    sub = p.add_subparsers(dest="cmd", required=True, metavar="{contact,deflection,peak,iterations}")
+    sub = p.add_subparsers(dest="cmd", required=True, metavar="{contact,deflection,peak,iterations,srm,joint}")
 
     def common(sp, default_out):
         sp.add_argument("runs", nargs="+", metavar="RUN", help="run folder or result file (several: overlaid)")
@@ -397,6 +410,22 @@ def main(argv=None) -> int:
     sp.add_argument("--markdown", default=None, metavar="FILE", help="also write the Markdown table to FILE")
     sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]")
 
+    sp = sub.add_parser("srm", help="F against u_char of a strength-reduction step, and the factor of safety")
+    sp.add_argument("runs", nargs=1, metavar="JOB.h5", help="run folder or its JOB.h5")
+    sp.add_argument("-o", "--output", default="fs.png", help="picture to write (default fs.png)")
+    sp.add_argument("--title", default=None)
+    sp.add_argument("--step", type=positive_int, default=0, help="step, 1-based (default: the last SRM step)")
+
+    sp = sub.add_parser("joint", help="CPRESS, CFLUIDP, |CSHEAR| and c + mu CPRESS along a joint, by STATUS")
+    sp.add_argument("runs", nargs=1, metavar="JOB.h5", help="run folder or its JOB.h5")
+    sp.add_argument("-o", "--output", default="joint.png", help="picture to write (default joint.png)")
+    sp.add_argument("--title", default=None)
+    sp.add_argument("--step", type=positive_int, default=0, help="step, 1-based (default: last)")
+    sp.add_argument("--pair", type=positive_int, default=1, help="contact pair (default 1)")
+    sp.add_argument("--mu", type=float, default=None, help="friction coefficient (default: the file's)")
+    sp.add_argument("--cohesion", type=float, default=None, help="cohesion (default: the file's, else 0)")
+    sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]")
+
     a = p.parse_args(argv)
     try:
         if a.cmd in ("pressure", "contact"):
@@ -421,6 +450,16 @@ def main(argv=None) -> int:
             plot_peak(pts, a.output, exact=exact, units=a.units, title=a.title)
             print(_table(sorted(pts, key=lambda q: (q["formulation"], q["nelem"])),
                          ["job", "formulation", "nelem", "peak"]), end="")
+        elif a.cmd == "srm":
+            d = plot_srm(a.runs[0], a.output, a.step, title=a.title)
+            print(f"step {d['step']}: {len(d['F'])} trials ({int(d['converged'].sum())} converged), "
+                  f"factor of safety {d['factor_of_safety']:.6g}")
+        elif a.cmd == "joint":
+            d = plot_joint(a.runs[0], a.output, a.step, a.pair, a.mu, a.cohesion, title=a.title, units=a.units)
+            counts = ", ".join(f"{int((d['STATUS'] == k).sum())} {n}" for k, n in
+                               ((0, "open"), (1, "closed"), (3, "stick"), (4, "slip")) if (d["STATUS"] == k).any())
+            print(f"step {d['step']}, pair {d['pair']}: {len(d['s'])} slave nodes over {d['s'][-1]:.6g} "
+                  f"({counts}); mu = {d['mu']:.6g}, c = {d['cohesion']:.6g}")
         else:
             series = iteration_series(a.runs, a.label, a.step)
             paper = PAPER_TABLE1 if a.paper_table1 else None
