@@ -353,7 +353,7 @@ contains
       integer(ip), allocatable :: partner(:), seg_at(:), sseg(:, :), selem(:)
       integer, allocatable :: sside(:)
       real(wp), allocatable :: vn(:, :), lsum(:), vs(:, :), cm(:), cs(:)
-      logical, allocatable :: use(:)
+      logical, allocatable :: facing(:)
       integer, allocatable :: nsides(:)
       real(wp) :: t(2), l
       integer :: k, i, j
@@ -378,11 +378,11 @@ contains
       end do
       call slave_edges(model, pair, sseg, selem, sside, error)
       if (allocated(error)) return
-      use = partner(sseg(1, :)) > 0 .and. partner(sseg(2, :)) > 0
-      call face_normals(model, sseg, selem, use, vs, cs)
+      facing = partner(sseg(1, :)) > 0 .and. partner(sseg(2, :)) > 0
+      call face_normals(model, sseg, selem, facing, vs, cs)
       allocate (nsides(model%nnode), source=0)
       do k = 1, size(sseg, 2)
-         if (use(k)) nsides(sseg(:, k)) = nsides(sseg(:, k)) + 1
+         if (facing(k)) nsides(sseg(:, k)) = nsides(sseg(:, k)) + 1
       end do
       allocate (pd%nn_seg(size(node)), source=0_ip)
       allocate (pd%nn_xi(size(node)), source=0.0_wp)
@@ -399,21 +399,21 @@ contains
       end do
    end subroutine node_partners
 
-   !> At every node of the sides seg(:, k) = (a, b) of elements elem(k) with use(k):
+   !> At every node of the sides seg(:, k) = (a, b) of elements elem(k) with take(k):
    !> vn, the sum of the sides' (t_y, -t_x) (t = x_b - x_a: length times the outward
    !> normal), and c, the length-weighted mean compliance of the sides' elements,
    !> (1 - nu**2)/E in plane strain, 1/E in plane stress (0 without a material).
-   subroutine face_normals(model, seg, elem, use, vn, c)
+   subroutine face_normals(model, seg, elem, take, vn, c)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: seg(:, :), elem(:)
-      logical, intent(in) :: use(:)
+      logical, intent(in) :: take(:)
       real(wp), allocatable, intent(out) :: vn(:, :), c(:)
       real(wp), allocatable :: lsum(:)
       real(wp) :: t(2), l, ce
       integer :: k, j
       allocate (vn(2, model%nnode), c(model%nnode), lsum(model%nnode), source=0.0_wp)
       do k = 1, size(seg, 2)
-         if (.not. use(k)) cycle
+         if (.not. take(k)) cycle
          t = model%x(:, seg(2, k)) - model%x(:, seg(1, k))
          l = length2(t)
          ce = element_compliance(model, elem(k))
