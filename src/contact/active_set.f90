@@ -140,6 +140,8 @@ module vemcontact_contact_active_set
       real(wp), allocatable :: cfluidp(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
       integer(ip), allocatable :: inserted(:)  !< nodes inserted for each pair (SURFACE TO SURFACE)
+      !> the number of nodes before the insertion: pair p's nodes follow those of the pairs before it
+      integer(ip) :: node_base = 0
       !> the tangential law of each pair and the tangential state of each entry
       !> (vemcontact_contact_tangential): forces along the unit tangent t = (-n_y, n_x)
       type(friction_state_t) :: fric
@@ -203,6 +205,7 @@ contains
          call allocate_entries(self, 0)
          return
       end if
+      self%node_base = model%nnode
       call insert_interface_nodes(model, self%inserted, error)
       if (allocated(error)) return
       allocate (self%pairs(size(model%pairs)))
@@ -1274,8 +1277,8 @@ contains
 
    !> CPRESS of the first-order SURFACE TO SURFACE pairs on the slave face's own sides
    !> (side_pressure, src/contact/recovery.f90): the nodes inserted into the slave face
-   !> of pair p are the ones its insertion appended (self%inserted(p) nodes, after
-   !> those of the pairs before it).
+   !> of pair p are the ones its insertion appended (self%inserted(p) nodes from
+   !> self%node_base on, after those of the pairs before it).
    subroutine recover_side_pressures(self, model, tab)
       class(contact_state_t), intent(in) :: self
       type(model_t), intent(in) :: model
@@ -1287,7 +1290,7 @@ contains
       integer(ip) :: n0
       integer :: p, lo, hi
       if (size(self%inserted) /= size(self%pairs)) return
-      n0 = model%nnode - sum(self%inserted)
+      n0 = self%node_base
       do p = 1, size(self%pairs)
          if (p > 1) n0 = n0 + self%inserted(p - 1)
          if (.not. self%pairs(p)%node_to_node .or. self%inserted(p) == 0) cycle
