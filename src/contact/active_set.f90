@@ -17,14 +17,16 @@
 module vemcontact_contact_active_set
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
-   use vemcontact_model, only: model_t, contact_pair_t, location_string, pair_surface_to_surface
-   use vemcontact_contact_surfaces, only: master_segments, slave_nodes
+   use vemcontact_model, only: model_t, contact_pair_t, location_string, pair_surface_to_surface, plane_stress, &
+                               element_side
+   use vemcontact_contact_surfaces, only: master_segments, slave_nodes, slave_edges
    use vemcontact_contact_insertion, only: insert_interface_nodes
+   use vemcontact_contact_recovery, only: side_pressure
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, &
                                         contact_graph_pairs, median
    use vemcontact_contact_geometry, only: relative_map, contact_stiffness, project_point_segment, seg_ok, &
                                           length2, contact_slip, segment_normal, segment_is_degenerate, &
-                                          projection_gradient, sliding_tangent
+                                          projection_gradient, sliding_tangent, common_normal
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_contact_spring, only: spring_t
@@ -119,6 +121,10 @@ module vemcontact_contact_active_set
       !> normal component of K u - f_ext at the slave node, which the elastic body
       !> transmits; what CPRESS reports
       real(wp), allocatable :: balanced(:)
+      !> whether an entry's balanced force is its spring's (set_balanced: a fixed dof of
+      !> the slave node along the normal, where the support takes part of the force);
+      !> such a force stays at its node when CPRESS is recovered (recover_side_pressures)
+      logical, allocatable :: held(:)
       integer(ip), allocatable :: iseg(:)      !< chosen segment (index into its pair's seg), 0 if none
       real(wp), allocatable :: xi(:), gap(:), gap0(:), normal(:, :)
       !> finite sliding: c = n.t and w = dxi/du of the pairing (sliding_tangent), for
@@ -134,6 +140,8 @@ module vemcontact_contact_active_set
       real(wp), allocatable :: cfluidp(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
       integer(ip), allocatable :: inserted(:)  !< nodes inserted for each pair (SURFACE TO SURFACE)
+      !> the number of nodes before the insertion: pair p's nodes follow those of the pairs before it
+      integer(ip) :: node_base = 0
       !> the tangential law of each pair and the tangential state of each entry
       !> (vemcontact_contact_tangential): forces along the unit tangent t = (-n_y, n_x)
       type(friction_state_t) :: fric
@@ -197,6 +205,7 @@ contains
          call allocate_entries(self, 0)
          return
       end if
+      self%node_base = model%nnode
       call insert_interface_nodes(model, self%inserted, error)
       if (allocated(error)) return
       allocate (self%pairs(size(model%pairs)))
@@ -230,7 +239,11 @@ contains
          end if
          self%pairs(p)%small_sliding = model%pairs(p)%small_sliding
          if (model%pairs(p)%formulation == pair_surface_to_surface) then
-            call node_partners(model, model%pairs(p), node, seg, self%pairs(p))
+            call node_partners(model, model%pairs(p), node, seg, seg_elem, self%pairs(p), err)
+            if (allocated(err)) then
+               call append_message(error, location_string(model, model%pairs(p)%loc)//': '//err%message, err%code)
+               cycle
+            end if
          end if
          self%pairs(p)%first = size(all_node)
          self%pairs(p)%nslave = size(node)
@@ -327,14 +340,24 @@ contains
    !> of the face gaps n_f . d over the node's tributary length, and the force N n is
    !> the lumped force of a pressure N / L on those faces: on a straight face the
    !> side's unit normal; at a kink shorter than 1 by cos of half the turn, which keeps
-   !> a uniform pressure exact there (docs/contact-formulation.md).
-   subroutine node_partners(model, pair, node, seg, pd)
+   !> a uniform pressure exact there (docs/contact-formulation.md).  Where the faces
+   !> are not one curve (a disc on a block) the direction is that of the interface the
+   !> two faces become, from both faces' mean normals and compliances (common_normal):
+   !> the slave's mean normal is taken over its sides whose both ends are paired (the
+   !> sides that face the master), and only at a node between two such sides: at an end
+   !> of the paired face (a symmetry line, a support, a slave face turning away past the
+   !> master's end) one side's normal is not the face's, and the master's is kept.
+   subroutine node_partners(model, pair, node, seg, seg_elem, pd, error)
       type(model_t), intent(in) :: model
       type(contact_pair_t), intent(in) :: pair
-      integer(ip), intent(in) :: node(:), seg(:, :)
+      integer(ip), intent(in) :: node(:), seg(:, :), seg_elem(:)
       type(pair_data_t), intent(inout) :: pd
-      integer(ip), allocatable :: partner(:), seg_at(:)
-      real(wp), allocatable :: vn(:, :), lsum(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer(ip), allocatable :: partner(:), seg_at(:), sseg(:, :), selem(:)
+      integer, allocatable :: sside(:)
+      real(wp), allocatable :: vn(:, :), lsum(:), vs(:, :), cm(:), cs(:)
+      logical, allocatable :: facing(:)
+      integer, allocatable :: nsides(:)
       real(wp) :: t(2), l
       integer :: k, i, j
       integer(ip) :: m
@@ -348,14 +371,21 @@ contains
       end if
       allocate (vn(2, model%nnode), lsum(model%nnode), source=0.0_wp)
       allocate (seg_at(model%nnode), source=0_ip)
+      call face_normals(model, seg, seg_elem, [(.true., k=1, size(seg, 2))], vn, cm)
       do k = 1, size(seg, 2)
-         t = model%x(:, seg(2, k)) - model%x(:, seg(1, k))
-         l = length2(t)
+         l = length2(model%x(:, seg(2, k)) - model%x(:, seg(1, k)))
          do j = 1, 2
-            vn(:, seg(j, k)) = vn(:, seg(j, k)) + [t(2), -t(1)]
             lsum(seg(j, k)) = lsum(seg(j, k)) + l
             if (seg_at(seg(j, k)) == 0) seg_at(seg(j, k)) = k
          end do
+      end do
+      call slave_edges(model, pair, sseg, selem, sside, error)
+      if (allocated(error)) return
+      facing = partner(sseg(1, :)) > 0 .and. partner(sseg(2, :)) > 0
+      call face_normals(model, sseg, selem, facing, vs, cs)
+      allocate (nsides(model%nnode), source=0)
+      do k = 1, size(sseg, 2)
+         if (facing(k)) nsides(sseg(:, k)) = nsides(sseg(:, k)) + 1
       end do
       allocate (pd%nn_seg(size(node)), source=0_ip)
       allocate (pd%nn_xi(size(node)), source=0.0_wp)
@@ -366,9 +396,55 @@ contains
          if (seg_at(m) == 0) cycle
          pd%nn_seg(i) = seg_at(m)
          pd%nn_xi(i) = merge(0.0_wp, 1.0_wp, seg(1, seg_at(m)) == m)
-         pd%nn_normal(:, i) = vn(:, m)/lsum(m)
+         t = vn(:, m)/lsum(m)
+         pd%nn_normal(:, i) = t
+         if (nsides(node(i)) == 2) pd%nn_normal(:, i) = common_normal(t, vs(:, node(i)), cm(m), cs(node(i)))
       end do
    end subroutine node_partners
+
+   !> At every node of the sides seg(:, k) = (a, b) of elements elem(k) with take(k):
+   !> vn, the sum of the sides' (t_y, -t_x) (t = x_b - x_a: length times the outward
+   !> normal), and c, the length-weighted mean compliance of the sides' elements,
+   !> (1 - nu**2)/E in plane strain, 1/E in plane stress (0 without a material).
+   subroutine face_normals(model, seg, elem, take, vn, c)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: seg(:, :), elem(:)
+      logical, intent(in) :: take(:)
+      real(wp), allocatable, intent(out) :: vn(:, :), c(:)
+      real(wp), allocatable :: lsum(:)
+      real(wp) :: t(2), l, ce
+      integer :: k, j
+      allocate (vn(2, model%nnode), c(model%nnode), lsum(model%nnode), source=0.0_wp)
+      do k = 1, size(seg, 2)
+         if (.not. take(k)) cycle
+         t = model%x(:, seg(2, k)) - model%x(:, seg(1, k))
+         l = length2(t)
+         ce = element_compliance(model, elem(k))
+         do j = 1, 2
+            vn(:, seg(j, k)) = vn(:, seg(j, k)) + [t(2), -t(1)]
+            c(seg(j, k)) = c(seg(j, k)) + l*ce
+            lsum(seg(j, k)) = lsum(seg(j, k)) + l
+         end do
+      end do
+      where (lsum > 0.0_wp) c = c/lsum
+   end subroutine face_normals
+
+   !> The compliance of element e's material under a surface pressure: (1 - nu**2)/E in
+   !> plane strain, 1/E in plane stress; 0 without an elastic material.
+   pure real(wp) function element_compliance(model, e) result(c)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: e
+      c = 0.0_wp
+      if (.not. (allocated(model%elem_mat) .and. allocated(model%materials))) return
+      if (model%elem_mat(e) < 1) return
+      associate (mat => model%materials(model%elem_mat(e)))
+         if (.not. (mat%young > 0.0_wp)) return
+         c = 1.0_wp/mat%young
+         if (allocated(model%elem_plane)) then
+            if (model%elem_plane(e) /= plane_stress) c = (1.0_wp - mat%poisson**2)/mat%young
+         end if
+      end associate
+   end function element_compliance
 
    !> Local numbering of a pair's nodes (slaves first, then the other master nodes).
    subroutine local_numbering(nnode, node, seg, pd)
@@ -912,6 +988,8 @@ contains
          if (abs(self%xi(i)) > 0.0_wp) uses(nodes(3)) = uses(nodes(3)) + 1
       end do
       if (.not. allocated(self%balanced)) allocate (self%balanced(self%n))
+      if (.not. allocated(self%held)) allocate (self%held(self%n))
+      self%held = .false.
       do i = 1, self%n
          self%balanced(i) = self%normal_force(i)
          self%fric%balanced(i) = -self%fric%force(i)
@@ -921,8 +999,9 @@ contains
          ! a fixed dof's residual holds its reaction: usable only across the normal
          ! (the tangent) when the fixed dofs have no component along it; the force on the
          ! node is N n + T t, with |n| = |t| < 1 at a kink of a SURFACE TO SURFACE master
-         if (.not. ((fixed(2*s - 1) .and. abs(self%normal(1, i)) > 0.0_wp) .or. &
-                    (fixed(2*s) .and. abs(self%normal(2, i)) > 0.0_wp))) &
+         self%held(i) = (fixed(2*s - 1) .and. abs(self%normal(1, i)) > 0.0_wp) .or. &
+                        (fixed(2*s) .and. abs(self%normal(2, i)) > 0.0_wp)
+         if (.not. self%held(i)) &
             self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))/ &
                                dot_product(self%normal(:, i), self%normal(:, i))
          if (.not. ((fixed(2*s - 1) .and. abs(self%normal(2, i)) > 0.0_wp) .or. &
@@ -1193,7 +1272,71 @@ contains
                                          u(2*nodes(3) - 1:2*nodes(3))])
          end if
       end do
+      call recover_side_pressures(self, model, tab)
    end function table
+
+   !> CPRESS of the first-order SURFACE TO SURFACE pairs on the slave face's own sides
+   !> (side_pressure, src/contact/recovery.f90): the nodes inserted into the slave face
+   !> of pair p are the ones its insertion appended (self%inserted(p) nodes from
+   !> self%node_base on, after those of the pairs before it).
+   subroutine recover_side_pressures(self, model, tab)
+      class(contact_state_t), intent(in) :: self
+      type(model_t), intent(in) :: model
+      type(contact_table_t), intent(inout) :: tab
+      type(error_t), allocatable :: err
+      integer(ip), allocatable :: edge(:, :), edge_elem(:)
+      integer, allocatable :: edge_side(:)
+      logical, allocatable :: new(:), keep(:)
+      integer(ip) :: n0
+      integer :: p, lo, hi
+      if (size(self%inserted) /= size(self%pairs)) return
+      n0 = self%node_base
+      do p = 1, size(self%pairs)
+         if (p > 1) n0 = n0 + self%inserted(p - 1)
+         if (.not. self%pairs(p)%node_to_node .or. self%inserted(p) == 0) cycle
+         if (model%pairs(p)%formulation /= pair_surface_to_surface) cycle
+         call slave_edges(model, model%pairs(p), edge, edge_elem, edge_side, err)
+         if (allocated(err)) cycle
+         if (size(edge_elem) == 0) cycle
+         allocate (new(model%nnode), source=.false.)
+         new(n0 + 1:n0 + self%inserted(p)) = .true.
+         lo = self%pairs(p)%first + 1
+         hi = self%pairs(p)%first + self%pairs(p)%nslave
+         allocate (keep(hi - lo + 1), source=.false.)
+         if (allocated(self%held)) keep = self%held(lo:hi)
+         tab%cpress(lo:hi) = side_pressure(model%x, face_chain(model, edge_elem, edge_side), new, self%node(lo:hi), &
+                                           tab%cpress(lo:hi)*tab%cnarea(lo:hi), tab%cnarea(lo:hi), &
+                                           tab%status(lo:hi) /= 0 .and. tab%status(lo:hi) /= 2, keep)
+         deallocate (keep)
+         deallocate (new)
+      end do
+   end subroutine recover_side_pressures
+
+   !> The slave face as a chain of straight pieces (a, b): a first-order side as it
+   !> is, a second-order side (a, m, b) as a -> m and m -> b, so that its side node
+   !> is one of the face's own nodes.
+   pure function face_chain(model, elem, side) result(chain)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: elem(:)
+      integer, intent(in) :: side(:)
+      integer(ip), allocatable :: chain(:, :)
+      integer(ip) :: abc(3)
+      integer :: k, m, ns
+      allocate (chain(2, 2*size(elem)))
+      m = 0
+      do k = 1, size(elem)
+         call element_side(model, elem(k), side(k), abc, ns)
+         if (abc(3) == 0) then
+            m = m + 1
+            chain(:, m) = abc(1:2)
+         else
+            chain(:, m + 1) = [abc(1), abc(3)]
+            chain(:, m + 2) = [abc(3), abc(2)]
+            m = m + 2
+         end if
+      end do
+      chain = chain(:, :m)
+   end function face_chain
 
    !> Largest overclosure of the active springs (0 if none).
    pure real(wp) function max_penetration(self) result(m)

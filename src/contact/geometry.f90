@@ -19,6 +19,7 @@ module vemcontact_contact_geometry
    public :: project_point_segment, relative_map, contact_force, contact_stiffness
    public :: segment_normal, projection_gradient, sliding_tangent
    public :: contact_energy, contact_pressure, contact_slip, segment_is_degenerate, length2
+   public :: common_normal
 
    !> project_point_segment status: a proper segment
    integer, parameter, public :: seg_ok = 0
@@ -199,4 +200,26 @@ contains
       nn = norm2(normal)
       if (nn > 0.0_wp) s = s/nn
    end function contact_slip
+   !> The normal of the interface that two facing faces become under contact: where the
+   !> master's normal nm (out of the master) and the slave's ns (out of the slave) are not
+   !> opposite (a disc on a block: they differ by x/R), each face bends toward the
+   !> other in proportion to its compliance c = (1 - nu**2)/E (plane strain; 1/E plane
+   !> stress), as the surface displacements of two half-planes under one pressure do, so
+   !> the common surface keeps the stiffer face's shape: its normal is the direction of
+   !> c_s nm - c_m ns, with the length of nm (a mean normal shorter than 1 at a kink;
+   !> docs/contact-formulation.md).  Where -ns = nm (a common interface) the result is
+   !> nm; without a slave normal or compliance (ns = 0, c_s + c_m <= 0) it is nm.
+   pure function common_normal(nm, ns, cm, cs) result(n)
+      real(wp), intent(in) :: nm(2), ns(2), cm, cs
+      real(wp) :: n(2)
+      real(wp) :: d(2), ld, lm
+      n = nm
+      lm = length2(nm)
+      if (.not. (cs + cm > 0.0_wp) .or. .not. (length2(ns) > 0.0_wp) .or. .not. (lm > 0.0_wp)) return
+      d = (cs*nm/lm - cm*ns/length2(ns))/(cs + cm)
+      ld = length2(d)
+      if (.not. (ld > 0.0_wp)) return
+      n = (lm/ld)*d
+   end function common_normal
+
 end module vemcontact_contact_geometry

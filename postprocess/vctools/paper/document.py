@@ -362,12 +362,12 @@ def write_document(plan, work: str, out: str, figs: str, t_runs: float) -> str:
             f"STS - NTS = {' / '.join(f'{b - a:+.2f}' for a, b in zip(nts_, sts_))} Pa"
             + ("" if len(sts_) < 2 else ", shrinking with refinement" if abs(sts_[-1] - nts_[-1]) <
                abs(sts_[0] - nts_[0]) else ", not shrinking with refinement")
-            + ". The nodes that STS inserts into the disc lie on its chords (the polygon that its "
-            "first-order elements are), recessed from the circle by up to the sagitta l^2/8R, so pressure "
-            "moves from them to the disc's vertices, which lie on the circle: the peak, at a vertex, carries "
-            "an error of the order of E* l/(8R), O(h) (docs/contact-formulation.md, \"Curved faces\"); NTS "
-            "samples the disc at its vertices only. VEM and FEM with NTS stay within a fraction of a percent "
-            "of each other.\n")
+            + ". The disc's first-order mesh is a polygon whose vertices are corners of the interface; the "
+            "nodes that STS inserts next to them resolve the corners' pressure peaks, an O(h) error of the "
+            "polygon, and STS's CPRESS, the pressure on the slave face's own nodes, spreads them over the "
+            "disc's own sides (docs/contact-formulation.md, \"Curved faces\" and \"CPRESS of SURFACE TO "
+            "SURFACE\"); NTS samples the disc at its vertices only. VEM and FEM with NTS stay within a "
+            "fraction of a percent of each other.\n")
 
     # -------------------------------------------------------------- example 3
     md.append("## Example 3: horizontal interface under uniform compression (Figs. 10, 11)\n")
