@@ -26,6 +26,7 @@ module vemcontact_contact_insertion
    use vemcontact_model, only: model_t, surface_t, dload_t, step_t, source_loc_t, location_string, &
                                surface_element, surface_node, form_fem, etype_polygon, etype_polygon2, dload_pressure, &
                                dload_hydrostatic, pair_surface_to_surface, element_order, element_side
+   use vemcontact_model, only: contact_pair_t
    use vemcontact_contact_surfaces, only: master_segments, slave_edges
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, end_tol
    use vemcontact_contact_geometry, only: length2
@@ -33,6 +34,7 @@ module vemcontact_contact_insertion
    private
 
    public :: insert_interface_nodes, project_onto_sides, on_face
+   public :: insert_tie_nodes
 
    !> A projection within snap_rel of a side's length from one of its end nodes is
    !> that node: nodes that coincide in the mesh (matching faces of a joint) do so up
@@ -81,6 +83,59 @@ contains
          end if
       end do
    end subroutine insert_interface_nodes
+
+   !> The insertion of a SURFACE TO SURFACE pair for every *TIE: the corners of each
+   !> face are inserted into the other face's sides, so that the tied interface is node
+   !> to node and tying the pairs (vemcontact_driver_tie) makes the two traces one
+   !> field, piecewise linear (or quadratic) on the union of both faces' nodes.  The
+   !> pairs are stored in model%ties(t)%partner.  A tie whose insertion is refused (a
+   !> FEM side, first- and second-order sides together, a split side held by a
+   !> *BOUNDARY, a face that is not on the outer boundary) keeps no partners and is
+   !> tied by closest points; the refusal is the pair's check before anything is
+   !> inserted (insert_pair), so the model is then unchanged.  `added(t)`: the nodes
+   !> inserted for tie t, -1 for a tie left to closest points.  insert_pair reads the
+   !> two surfaces from model%pairs, so each tie runs as a pair appended there for the
+   !> time of its insertion.
+   subroutine insert_tie_nodes(model, added)
+      type(model_t), intent(inout) :: model
+      integer(ip), allocatable, intent(out) :: added(:)
+      type(contact_pair_t), allocatable :: kept(:)
+      type(contact_pair_t) :: pair
+      type(error_t), allocatable :: err
+      integer :: t, n
+      if (.not. allocated(model%ties)) then
+         allocate (added(0))
+         return
+      end if
+      allocate (added(size(model%ties)), source=-1_ip)
+      do t = 1, size(model%ties)
+         if (model%ties(t)%slave == 0 .or. model%ties(t)%master == 0) cycle
+         pair%slave = model%ties(t)%slave
+         pair%master = model%ties(t)%master
+         pair%formulation = pair_surface_to_surface
+         pair%loc = model%ties(t)%loc
+         if (allocated(model%pairs)) then
+            kept = model%pairs
+            model%pairs = [kept, pair]
+         else
+            model%pairs = [pair]
+         end if
+         n = size(model%pairs)
+         call insert_pair(model, n, added(t), err)
+         if (allocated(err)) then
+            added(t) = -1
+            deallocate (err)
+         else
+            call move_alloc(model%pairs(n)%partner, model%ties(t)%partner)
+         end if
+         if (allocated(kept)) then
+            model%pairs = kept
+            deallocate (kept)
+         else
+            deallocate (model%pairs)
+         end if
+      end do
+   end subroutine insert_tie_nodes
 
    !> Insertion and partners of pair p.  Each face is a list of sides (a, b, m): the
    !> corners a -> b in element orientation and the side node m of a second-order side

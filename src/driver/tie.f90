@@ -1,16 +1,21 @@
-!> *TIE: the constraints that bond a slave surface to a master surface, as
-!> CalculiX makes them: each slave node is projected onto the closest side of
-!> the master face (the straight side, or the quadratic curve through a
-!> second-order side's three nodes), and each of its two dofs is tied to the
-!> face there, u_s - sum_j N_j(xi) u_j = 0, N_j the side's shape functions.  The
+!> *TIE: the constraints that bond a slave surface to a master surface.  Where the
+!> interface nodes were inserted into both faces (virtual elements:
+!> vemcontact_contact_insertion, insert_tie_nodes), each slave node has a master
+!> node at the same point and its two dofs are tied to it, u_s - u_m = 0: the two
+!> traces, interpolated on the same nodes, are one field, so a tied patch of any
+!> two meshes passes the patch test.  Other slave nodes (every node of a tie with
+!> FEM sides, and slave nodes that found no partner) are tied as CalculiX ties
+!> them: projected onto the closest side of the master face (the straight side,
+!> or the quadratic curve through a second-order side's three nodes), each dof
+!> tied to the face there, u_s - sum_j N_j(xi) u_j = 0, N_j the side's shape
+!> functions; a master node between two slave nodes is then not held, and the
+!> traces coincide only where every master node is also a slave node.  The
 !> constraints join the *EQUATION ones (vemcontact_driver_equations eliminates
 !> them), so a tie costs no penalty and keeps the system positive definite.
-!> Any field linear in x and y satisfies them exactly, so a tied patch of
-!> non-matching meshes passes the patch test (the exact solution lies in the
-!> constrained space).  Skipped: slave nodes that are nodes of the master face,
-!> and slave dofs that a *BOUNDARY prescribes or an *EQUATION makes dependent
-!> (CalculiX drops those ties too).  A slave node farther from the master than
-!> the position tolerance (default 5 % of the mean master side) is an error.
+!> Skipped: slave nodes that are nodes of the master face, and slave dofs that a
+!> *BOUNDARY prescribes or an *EQUATION makes dependent (CalculiX drops those
+!> ties too).  A slave node farther from its master point than the position
+!> tolerance (default 5 % of the mean master side) is an error.
 module vemcontact_driver_tie
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
@@ -96,6 +101,20 @@ contains
       end if
       slaves = slave_nodes(model, model%ties(t)%slave)
       nbad = 0
+      ! node to node: the partners of the insertion, whose faces are the same curve
+      if (allocated(model%ties(t)%partner)) then
+         do k = 1, size(model%ties(t)%partner, 2)
+            s = model%ties(t)%partner(1, k)
+            if (on_master(s)) cycle
+            on_master(s) = .true.   ! tied here: not again by its closest point
+            call check_distance(norm2(model%x(:, s) - model%x(:, model%ties(t)%partner(2, k))))
+            do d = 1, 2
+               if (taken(2*s - 2 + d)) cycle
+               taken(2*s - 2 + d) = .true.
+               call push(eqs, neq, s, d, model%ties(t)%partner(2:2, k), [1.0_wp], model%ties(t)%loc)
+            end do
+         end do
+      end if
       do k = 1, size(slaves)
          s = slaves(k)
          if (on_master(s)) cycle
@@ -111,16 +130,8 @@ contains
             end if
          end do
          if (bf == 0) cycle
-         if (best > tol) then
-            nbad = nbad + 1
-            write (b1, '(i0)') model%node_id(s)
-            write (b2, '(es10.3)') best
-            write (b3, '(es10.3)') tol
-            if (nbad <= max_listed) call append_message(error, location_string(model, model%ties(t)%loc)// &
-               ': error: slave node '//trim(b1)//' of *TIE '//model%ties(t)%name//' is '//trim(adjustl(b2))// &
-               ' from the master surface, beyond the position tolerance '//trim(adjustl(b3)), err_input)
-            cycle
-         end if
+         call check_distance(best)
+         if (best > tol) cycle
          m = merge(3, 2, faces(3, bf) > 0)
          w(1:m) = shape(bxi, m)
          do d = 1, 2
@@ -133,6 +144,19 @@ contains
          write (b1, '(i0)') nbad - max_listed
          call append_message(error, '... and '//trim(b1)//' more')
       end if
+   contains
+      !> An error for slave node s at `dist` from its master point beyond the tolerance.
+      subroutine check_distance(dist)
+         real(wp), intent(in) :: dist
+         if (.not. dist > tol) return
+         nbad = nbad + 1
+         write (b1, '(i0)') model%node_id(s)
+         write (b2, '(es10.3)') dist
+         write (b3, '(es10.3)') tol
+         if (nbad <= max_listed) call append_message(error, location_string(model, model%ties(t)%loc)// &
+            ': error: slave node '//trim(b1)//' of *TIE '//model%ties(t)%name//' is '//trim(adjustl(b2))// &
+            ' from the master surface, beyond the position tolerance '//trim(adjustl(b3)), err_input)
+      end subroutine check_distance
    end subroutine tie_one
 
    !> Master faces (a, b, side node or 0) of surface `surf`.
