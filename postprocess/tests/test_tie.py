@@ -229,3 +229,46 @@ def test_voronoi_tied_to_quads_is_exact(exe, tmp_path, order, slave):
     lam, mu = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
     want = [lam * (exx + eyy) + 2 * mu * exx, lam * (exx + eyy) + 2 * mu * eyy, lam * (exx + eyy), mu * gxy]
     assert np.abs(s - want).max() <= 1e-10 * np.abs(want).max()
+
+
+ALPHA, T0, TX, TY = 1e-5, 100.0, 30.0, 50.0
+
+
+def free_expansion(x, y):
+    """The stress-free displacement of the temperature T = T0 + TX x + TY y (plane strain:
+    in-plane strains (1 + nu) alpha T, compatible for a linear T)."""
+    k = (1 + NU) * ALPHA
+    return (k * (T0 * x + TX * x * x / 2 + TY * x * y - TX * y * y / 2),
+            k * (T0 * y + TX * x * y + TY * y * y / 2 - TY * x * x / 2))
+
+
+@pytest.mark.parametrize("left, right", [(("VPE", 1, 2), ("VPE", 1, 3)), (("VPE2", 2, 2), ("VPE2", 2, 3)),
+                                         (("VPE2", 2, 3), ("VPE2", 2, 2))])
+def test_tied_free_thermal_expansion(exe, tmp_path, left, right):
+    """A temperature linear in x and y at every deck node, the outer corners held at the
+    free expansion: no in-plane stress anywhere.  The nodes inserted into the faces take
+    their temperature from the ends of the side they split (linear along it), as do the
+    side nodes of a split second-order side; with T = T0 there, the polygons around them
+    had in-plane stresses of 14 % of E alpha T (measured on the 2-against-3 VPE patch
+    under a uniform T).  First order: the uniform part only (a linear T needs a
+    quadratic displacement); second order: the whole linear T.  Tolerance 1e-10 of
+    E alpha T (round-off: measured 2e-15 to 2e-14)."""
+    lin = left[0] == "VPE2"
+    text, nodes = deck(left, right, "tension")
+    text = text[:text.index("*BOUNDARY")].replace(f"*ELASTIC\n{E}, {NU}\n", f"*ELASTIC\n{E}, {NU}\n*EXPANSION\n{ALPHA}\n")
+    lines = ["*BOUNDARY"]
+    for k, (x, y) in nodes.items():
+        if x in (0.0, 2.0) and y in (0.0, 1.0):
+            if lin:
+                ux, uy = free_expansion(x, y)
+            else:
+                ux, uy = (1 + NU) * ALPHA * T0 * x, (1 + NU) * ALPHA * T0 * y
+            lines += [f"{k}, 1, 1, {float(ux)!r}", f"{k}, 2, 2, {float(uy)!r}"]
+    lines += ["*STEP", "*STATIC", "*TEMPERATURE"]
+    lines += [f"{k}, {float(T0 + (TX * x + TY * y if lin else 0.0))!r}" for k, (x, y) in nodes.items()]
+    lines += ["*NODE FILE", "U", "*EL FILE", "S", "*END STEP"]
+    run(exe, tmp_path, text + "\n".join(lines) + "\n")
+    x, u, s = mesh(tmp_path)
+    assert len(x) > len(nodes)
+    scale = E * ALPHA * (T0 + TX + TY)
+    assert np.abs(s[:, [0, 1, 3]]).max() <= 1e-10 * scale

@@ -41,6 +41,7 @@ module vemcontact_driver_static
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_contact_insertion, only: insert_tie_nodes
+   use vemcontact_driver_inserted_values, only: interpolate_inserted
    use vemcontact_contact_friction, only: tangent_stick, tangent_slip
    use vemcontact_log, only: logger_t
    use vemcontact_interrupt, only: interrupt_error, interrupt_context, is_interrupt, err_interrupt_base
@@ -194,6 +195,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(string_t), allocatable :: warnings(:)
       integer(ip), allocatable :: tie_added(:)
+      integer(ip) :: n0
       character(len=256) :: buf
       integer :: iw
       ! the magnitudes before anything is computed from them (the contact stiffness
@@ -205,10 +207,12 @@ contains
       call check_contact_pairs(model, error)
       if (allocated(error)) return
       ! the ties' insertions first: the contact pairs then see the faces as they stay
+      n0 = model%nnode
       call insert_tie_nodes(model, tie_added)
       call report_ties(model, tie_added, log)
       call rs%contact%init(model, error)
       if (allocated(error)) return
+      call interpolate_inserted(model, n0)
       call report_model(model, rs%contact, log)
       call rs%sys%setup(model, opts%ordering, error, rs%contact, opts%solver)
       if (allocated(error)) return
