@@ -272,3 +272,55 @@ def test_tied_free_thermal_expansion(exe, tmp_path, left, right):
     assert len(x) > len(nodes)
     scale = E * ALPHA * (T0 + TX + TY)
     assert np.abs(s[:, [0, 1, 3]]).max() <= 1e-10 * scale
+
+
+def grid_block(x0, y0, w, h, n, m, first_node, first_elem):
+    ids, nodes, elems = {}, {}, {}
+    for j in range(m + 1):
+        for i in range(n + 1):
+            ids[i, j] = first_node + len(nodes)
+            nodes[ids[i, j]] = (x0 + w * i / n, y0 + h * j / m)
+    for j in range(m):
+        for i in range(n):
+            elems[first_elem + len(elems)] = (i, j, [ids[i, j], ids[i + 1, j], ids[i + 1, j + 1], ids[i, j + 1]])
+    return nodes, elems
+
+
+@pytest.mark.parametrize("top", ["tie", "contact"])
+def test_two_ties_meet(exe, tmp_path, top):
+    """Three VEM blocks: A [0,1]^2 (2 x 2) and B [1,2] x [0,1] (3 x 3) tied along x = 1, and
+    C [0,2] x [1,2] (5 x 4) on top of both, tied to A's and B's tops (one master surface)
+    or in HARD SURFACE TO SURFACE contact with them.  The nodes at (1, 1) are in both
+    interfaces (B's is a slave of the first tie and a master node of the second: the
+    equations chain).  A linear field (tie) or uniform compression (contact, no shear)
+    prescribed on the outer boundary: every node to 1e-10 (measured 3e-16 and 9e-16)."""
+    a, b, c = grid_block(0, 0, 1, 1, 2, 2, 1, 1), grid_block(1, 0, 1, 1, 3, 3, 101, 101), \
+        grid_block(0, 1, 2, 1, 5, 4, 201, 201)
+    nodes = {**a[0], **b[0], **c[0]}
+    field = exact_linear if top == "tie" else (lambda x, y: (0.0, -1e-3 * y))
+    lines = ["*NODE"] + [f"{k}, {float(x)!r}, {float(y)!r}" for k, (x, y) in nodes.items()]
+    for (_, els), name in ((a, "A"), (b, "B"), (c, "C")):
+        lines += [f"*ELEMENT, TYPE=VPE, ELSET={name}"] + [", ".join(map(str, [e] + q)) for e, (_, _, q) in els.items()]
+    lines += ["*SURFACE, NAME=AR"] + [f"{e}, S2" for e, (i, _, _) in a[1].items() if i == 1]
+    lines += ["*SURFACE, NAME=BL"] + [f"{e}, S4" for e, (i, _, _) in b[1].items() if i == 0]
+    lines += ["*SURFACE, NAME=ABTOP"] + [f"{e}, S3" for e, (_, j, _) in a[1].items() if j == 1]
+    lines += [f"{e}, S3" for e, (_, j, _) in b[1].items() if j == 2]
+    lines += ["*SURFACE, NAME=CBOT"] + [f"{e}, S1" for e, (_, j, _) in c[1].items() if j == 0]
+    lines += ["*TIE, NAME=T1", "BL, AR"]
+    if top == "tie":
+        lines += ["*TIE, NAME=T2", "CBOT, ABTOP"]
+    else:
+        lines += ["*SURFACE INTERACTION, NAME=I", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD",
+                  "*CONTACT PAIR, INTERACTION=I, TYPE=SURFACE TO SURFACE", "CBOT, ABTOP"]
+    lines += ["*MATERIAL, NAME=M", "*ELASTIC", f"{E}, {NU}"]
+    lines += [f"*SOLID SECTION, ELSET={n}, MATERIAL=M" for n in "ABC"] + ["*BOUNDARY"]
+    for k, (x, y) in nodes.items():
+        if min(abs(x), abs(x - 2), abs(y), abs(y - 2)) < 1e-12:
+            ux, uy = field(x, y)
+            lines += [f"{k}, 1, 1, {float(ux)!r}", f"{k}, 2, 2, {float(uy)!r}"]
+    lines += ["*STEP", "*STATIC", "*NODE FILE", "U", "*EL FILE", "S", "*END STEP"]
+    run(exe, tmp_path, "\n".join(lines) + "\n")
+    x, u, _ = mesh(tmp_path)
+    assert len(x) == len(nodes) + 11     # 3 nodes inserted at x = 1, 8 at y = 1
+    ex = np.array([field(*p) for p in x])
+    assert np.abs(u - ex).max() <= 1e-10 * np.abs(ex).max()
