@@ -150,6 +150,10 @@ module vemcontact_model
       !> the (slave node, master node) pairs made by the interface node insertion
       !> (vemcontact_contact_insertion, insert_tie_nodes); unallocated: no insertion
       integer(ip), allocatable :: partner(:, :)
+      !> the slave face's elements are FEM and the master's virtual: the slave face's
+      !> nodes were inserted into the master face, whose nodes are then tied to the
+      !> slave face (closest points), the roles of the faces swapped
+      logical :: reverse = .false.
       type(source_loc_t) :: loc
    end type tie_t
 

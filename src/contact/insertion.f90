@@ -88,14 +88,16 @@ contains
    !> face are inserted into the other face's sides, so that the tied interface is node
    !> to node and tying the pairs (vemcontact_driver_tie) makes the two traces one
    !> field, piecewise linear (or quadratic) on the union of both faces' nodes.  The
-   !> pairs are stored in model%ties(t)%partner.  A tie whose insertion is refused (a
-   !> FEM side, first- and second-order sides together, a split side held by a
-   !> *BOUNDARY, a face that is not on the outer boundary) keeps no partners and is
-   !> tied by closest points; the refusal is the pair's check before anything is
-   !> inserted (insert_pair), so the model is then unchanged.  `added(t)`: the nodes
-   !> inserted for tie t, -1 for a tie left to closest points.  insert_pair reads the
-   !> two surfaces from model%pairs, so each tie runs as a pair appended there for the
-   !> time of its insertion.
+   !> pairs are stored in model%ties(t)%partner.  When only one face is of virtual
+   !> elements, the FEM face's corners are inserted into it (insert_fem_corners) and
+   !> its nodes are then tied to the FEM face by closest points.  A tie whose insertion
+   !> is refused (two FEM faces, first- and second-order sides together, a split side
+   !> held by a *BOUNDARY, a face that is not on the outer boundary) keeps no partners
+   !> and is tied by closest points; the refusals are checks made before anything is
+   !> inserted, so the model is then unchanged.  `added(t)`: the nodes inserted for tie
+   !> t, -1 for a tie left to closest points.  insert_pair reads the two surfaces from
+   !> model%pairs, so each tie runs as a pair appended there for the time of its
+   !> insertion.
    subroutine insert_tie_nodes(model, added)
       type(model_t), intent(inout) :: model
       integer(ip), allocatable, intent(out) :: added(:)
@@ -123,8 +125,13 @@ contains
          n = size(model%pairs)
          call insert_pair(model, n, added(t), err)
          if (allocated(err)) then
-            added(t) = -1
             deallocate (err)
+            call insert_fem_corners(model, n, added(t), model%ties(t)%reverse, err)
+            if (allocated(err)) then
+               added(t) = -1
+               model%ties(t)%reverse = .false.
+               deallocate (err)
+            end if
          else
             call move_alloc(model%pairs(n)%partner, model%ties(t)%partner)
          end if
@@ -136,6 +143,79 @@ contains
          end if
       end do
    end subroutine insert_tie_nodes
+
+   !> One way, for a *TIE (pair p) of a face of virtual elements and a face of FEM
+   !> elements: the FEM face's corners are inserted into the virtual face's sides where
+   !> they project onto them (closest points), so that every node of the FEM face is a
+   !> node of the virtual face too; tied to the FEM face at their closest points, the
+   !> virtual face's nodes then make its trace the FEM face's (vemcontact_driver_tie).
+   !> `reverse`: the virtual face is the master (its nodes are to be tied to the slave
+   !> face, which must then be an element surface).  An error, with the model
+   !> unchanged, when neither or both faces are of virtual elements or the orders differ.
+   subroutine insert_fem_corners(model, p, nadded, reverse, error)
+      type(model_t), intent(inout) :: model
+      integer, intent(in) :: p
+      integer(ip), intent(out) :: nadded
+      logical, intent(out) :: reverse
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err_m, err_s
+      integer(ip), allocatable :: mseg(:, :), melem(:), sseg(:, :), selem(:), vface(:, :), fface(:, :), fnode(:)
+      integer(ip), allocatable :: vnode(:), on(:), partner(:), velem(:)
+      integer, allocatable :: mside(:), sside(:), vside(:)
+      real(wp), allocatable :: xi(:)
+      type(insertion_t), allocatable :: ins(:), mids(:)
+      logical, allocatable :: on_slave(:)
+      integer :: order, m
+      nadded = 0
+      reverse = .false.
+      call master_segments(model, model%pairs(p), mseg, melem, mside, error)
+      if (allocated(error)) return
+      melem = model%surfaces(model%pairs(p)%master)%elem
+      mside = model%surfaces(model%pairs(p)%master)%side
+      call slave_edges(model, model%pairs(p), sseg, selem, sside, error)
+      if (allocated(error)) return
+      call check_orders(model, [melem, selem], order, error)
+      if (allocated(error)) return
+      call check_virtual(model, melem, err_m)
+      call check_virtual(model, selem, err_s)
+      if (allocated(err_m) .eqv. allocated(err_s)) then
+         call fatal_error(error, 'error: one face of virtual elements, one of FEM elements expected', err_input)
+         return
+      end if
+      reverse = .not. allocated(err_m)
+      if (reverse) then
+         if (model%surfaces(model%pairs(p)%slave)%kind /= surface_element) then
+            call fatal_error(error, 'error: a FEM slave face of TYPE=NODE cannot be a master', err_input)
+            return
+         end if
+         vface = face_sides(model, melem, mside)
+         fface = face_sides(model, selem, sside)
+         velem = melem
+         vside = mside
+      else
+         vface = face_sides(model, selem, sside)
+         fface = face_sides(model, melem, mside)
+         velem = selem
+         vside = sside
+      end if
+      ! the FEM corners that are not nodes of the virtual face already
+      vnode = unique_nodes(vface(1:2, :), model%nnode)
+      fnode = unique_nodes(fface(1:2, :), model%nnode)
+      fnode = pack(fnode, .not. is_in(fnode, vnode, model%nnode))
+      call project_onto_face(model%x, vface, fnode, 2.0_wp*max(longest_side(model%x, vface), &
+                             longest_side(model%x, fface)), on, xi, error)
+      if (allocated(error)) return
+      allocate (ins(count(on > 0)))
+      m = 0
+      call partners(vface, velem, vside, on, xi, ins, m, partner)
+      ins = ins(:m)
+      call check_constrained_sides(model, ins, error)
+      if (allocated(error)) return
+      call apply_insertions(model, ins, nadded, mids)
+      allocate (on_slave(model%nelem), source=.false.)
+      if (.not. reverse) on_slave(selem) = .true.
+      call add_to_sets(model, [ins, mids], model%pairs(p)%slave, on_slave)
+   end subroutine insert_fem_corners
 
    !> Insertion and partners of pair p.  Each face is a list of sides (a, b, m): the
    !> corners a -> b in element orientation and the side node m of a second-order side

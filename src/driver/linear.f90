@@ -357,7 +357,7 @@ contains
          self%refactorized = any(fixed .neqv. self%factored_fixed)
       end if
       if (self%refactorized) then
-         call check_supports(model, self%part, self%nparts, fixed, error)
+         call check_supports(model, self%part, self%nparts, fixed, error, cs=self%cs)
          if (allocated(error)) return
          call copy_values(self%k, self%kb)
          call self%constrain(self%kb, fixed, st%prescribed, f, .true., error)
@@ -421,7 +421,7 @@ contains
       end if
       f = fext
       call contact%add_rhs(f)
-      call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part))
+      call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part), self%cs)
       if (allocated(error)) return
       call self%constrain(self%kb, fixed, prescribed, f, .true., error)
    end subroutine contact_matrix

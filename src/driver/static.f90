@@ -245,7 +245,8 @@ contains
       call log%lap('set-up')
    end subroutine set_up
 
-   !> How each *TIE is made: node to node after `added(t)` nodes were inserted, or
+   !> How each *TIE is made: node to node after `added(t)` nodes were inserted, the
+   !> virtual face tied to the FEM face after `added(t)` of its nodes were inserted, or
    !> by closest points (added(t) < 0).
    subroutine report_ties(model, added, log)
       type(model_t), intent(in) :: model
@@ -254,11 +255,14 @@ contains
       character(len=256) :: buf
       integer :: t
       do t = 1, size(added)
-         if (added(t) >= 0) then
+         if (allocated(model%ties(t)%partner)) then
             write (buf, '(a,i0,a,i0,a)') ': ', added(t), ' interface nodes inserted, ', &
                size(model%ties(t)%partner, 2), ' node pairs tied'
+         else if (added(t) >= 0) then
+            write (buf, '(a,i0,a)') ': ', added(t), ' FEM face nodes inserted into the virtual face, '// &
+               'whose nodes are tied to the FEM face'
          else
-            buf = ': closest-point tie (no insertion: a FEM side, first- and second-order sides, or a held side)'
+            buf = ': closest-point tie (no insertion: FEM faces, first- and second-order sides, or a held side)'
          end if
          call log%say('  tie '//model%ties(t)%name//trim(buf))
       end do

@@ -21,6 +21,7 @@ module vemcontact_driver_tie
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
    use vemcontact_model, only: model_t, equation_t, dof_value_t, source_loc_t, surface_node, location_string, &
                                element_side
+   use vemcontact_contact_insertion, only: snap_rel
    implicit none
    private
 
@@ -83,7 +84,20 @@ contains
       integer :: k, f, bf, nf, d, nbad, m, j
       integer(ip) :: s
       character(len=24) :: b1, b2, b3
-      call master_faces(model, model%ties(t)%master, faces)
+      character(len=:), allocatable :: which, other
+      ! reverse: the master face (virtual elements, which took the FEM slave face's
+      ! nodes) is tied to the slave face
+      if (model%ties(t)%reverse) then
+         call master_faces(model, model%ties(t)%slave, faces)
+         slaves = slave_nodes(model, model%ties(t)%master)
+         which = 'master face node '
+         other = ' from the slave surface'
+      else
+         call master_faces(model, model%ties(t)%master, faces)
+         slaves = slave_nodes(model, model%ties(t)%slave)
+         which = 'slave node '
+         other = ' from the master surface'
+      end if
       nf = size(faces, 2)
       allocate (on_master(model%nnode), source=.false.)
       do f = 1, nf
@@ -99,7 +113,6 @@ contains
          end do
          tol = 0.05_wp*tol/max(nf, 1)
       end if
-      slaves = slave_nodes(model, model%ties(t)%slave)
       nbad = 0
       ! node to node: the partners of the insertion, whose faces are the same curve
       if (allocated(model%ties(t)%partner)) then
@@ -135,7 +148,11 @@ contains
          m = merge(3, 2, faces(3, bf) > 0)
          w(1:m) = shape(bxi, m)
          do d = 1, 2
-            if (taken(2*s - 2 + d)) cycle
+            if (taken(2*s - 2 + d)) then
+               ! reverse: a held master node at a FEM node holds that node instead
+               if (model%ties(t)%reverse) call hold_fem_node(d)
+               cycle
+            end if
             taken(2*s - 2 + d) = .true.
             call push(eqs, neq, s, d, faces(1:m, bf), w(1:m), model%ties(t)%loc)
          end do
@@ -154,9 +171,26 @@ contains
          write (b2, '(es10.3)') dist
          write (b3, '(es10.3)') tol
          if (nbad <= max_listed) call append_message(error, location_string(model, model%ties(t)%loc)// &
-            ': error: slave node '//trim(b1)//' of *TIE '//model%ties(t)%name//' is '//trim(adjustl(b2))// &
-            ' from the master surface, beyond the position tolerance '//trim(adjustl(b3)), err_input)
+            ': error: '//which//trim(b1)//' of *TIE '//model%ties(t)%name//' is '//trim(adjustl(b2))// &
+            other//', beyond the position tolerance '//trim(adjustl(b3)), err_input)
       end subroutine check_distance
+
+      !> Dof d of node s (held) lies on an end node of face bf (within snap_rel of the
+      !> side): that node's dof d tied to s's, when nothing else prescribes it.
+      subroutine hold_fem_node(d)
+         integer, intent(in) :: d
+         integer(ip) :: fn
+         if (bxi <= snap_rel) then
+            fn = faces(1, bf)
+         else if (bxi >= 1.0_wp - snap_rel) then
+            fn = faces(2, bf)
+         else
+            return
+         end if
+         if (taken(2*fn - 2 + d)) return
+         taken(2*fn - 2 + d) = .true.
+         call push(eqs, neq, fn, d, [s], [1.0_wp], model%ties(t)%loc)
+      end subroutine hold_fem_node
    end subroutine tie_one
 
    !> Master faces (a, b, side node or 0) of surface `surf`.
