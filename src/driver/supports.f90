@@ -135,7 +135,7 @@ contains
          if (held(2*i - 1)) call add_row([1.0_wp, 0.0_wp, -(model%x(2, i) - c(2, p))/sc(p)], [3*p - 2, 3*p - 1, 3*p], 3)
          if (held(2*i)) call add_row([0.0_wp, 1.0_wp, (model%x(1, i) - c(1, p))/sc(p)], [3*p - 2, 3*p - 1, 3*p], 3)
       end do
-      if (present(cs)) call add_equations(cs)
+      if (present(cs)) call equation_rows(model, part, c, sc, cs, ctc)
       if (present(springs)) then
          do k = 1, size(springs)
             p = springs(k)%part_slave
@@ -197,27 +197,55 @@ contains
             end do
          end do
       end subroutine add_row
-      !> The rows of the equations: the rigid motion of dof d's part at d minus the
-      !> weighted motions of its terms' parts at theirs (whole rows: m is 3 per part).
-      subroutine add_equations(cs)
-         type(constraint_set_t), intent(in) :: cs
-         real(wp), allocatable :: row(:)
-         integer, allocatable :: nz(:)
-         integer :: q, j
-         allocate (row(m))
-         do q = 1, cs%n
-            row = 0.0_wp
-            call add_motion(row, int(cs%dep(q)), 1.0_wp)
-            do j = cs%ptr(q), cs%ptr(q + 1) - 1
-               call add_motion(row, int(cs%dof(j)), -cs%a(j))
-            end do
-            nz = pack([(j, j=1, m)], row /= 0.0_wp)
-            if (size(nz) > 0) call add_row(row(nz), nz, size(nz))
+      logical function tied(pp)
+         integer, intent(in) :: pp
+         tied = .false.
+         if (present(cs)) tied = in_equations(part, pp, cs)
+      end function tied
+      logical function touched(pp)
+         integer, intent(in) :: pp
+         integer :: kk
+         touched = .false.
+         if (.not. present(springs)) return
+         do kk = 1, size(springs)
+            if (springs(kk)%part_slave == pp .or. springs(kk)%part_master == pp) then
+               touched = .true.
+               return
+            end if
          end do
-      end subroutine add_equations
-      !> row += w times the rigid motion (translation a, b and rotation w) of the
-      !> part of dof `dof` along that dof, at its node.
-      subroutine add_motion(row, dof, w)
+      end function touched
+   end subroutine check_supports
+
+   !> Add to ctc the rows of the equations of `cs`: the rigid motion of the dependent
+   !> dof's part at its node minus the weighted motions of its terms' parts at theirs
+   !> (rows over all 3 nparts unknowns, in check_supports' scaled coordinates c, sc).
+   pure subroutine equation_rows(model, part, c, sc, cs, ctc)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: part(:)
+      real(wp), intent(in) :: c(:, :), sc(:)
+      type(constraint_set_t), intent(in) :: cs
+      real(wp), intent(inout) :: ctc(:, :)
+      real(wp), allocatable :: row(:)
+      integer, allocatable :: nz(:)
+      integer :: q, j, a, b
+      allocate (row(size(ctc, 1)))
+      do q = 1, cs%n
+         row = 0.0_wp
+         call add_motion(row, int(cs%dep(q)), 1.0_wp)
+         do j = cs%ptr(q), cs%ptr(q + 1) - 1
+            call add_motion(row, int(cs%dof(j)), -cs%a(j))
+         end do
+         nz = pack([(j, j=1, size(row))], row /= 0.0_wp)
+         do b = 1, size(nz)
+            do a = 1, size(nz)
+               ctc(nz(a), nz(b)) = ctc(nz(a), nz(b)) + row(nz(a))*row(nz(b))
+            end do
+         end do
+      end do
+   contains
+      !> row += w times the rigid motion (translations, rotation) of the part of dof
+      !> `dof` along that dof, at its node.
+      pure subroutine add_motion(row, dof, w)
          real(wp), intent(inout) :: row(:)
          integer, intent(in) :: dof
          real(wp), intent(in) :: w
@@ -233,31 +261,21 @@ contains
             row(3*pp) = row(3*pp) + w*(model%x(1, node) - c(1, pp))/sc(pp)
          end if
       end subroutine add_motion
-      !> Whether part pp has a dof in an equation (held through another part, or not).
-      logical function tied(pp)
-         integer, intent(in) :: pp
-         integer :: q, j
-         tied = .false.
-         if (.not. present(cs)) return
-         do q = 1, cs%n
-            if (part((cs%dep(q) + 1)/2) == pp) tied = .true.
-            do j = cs%ptr(q), cs%ptr(q + 1) - 1
-               if (part((cs%dof(j) + 1)/2) == pp) tied = .true.
-            end do
-            if (tied) return
+   end subroutine equation_rows
+
+   !> Whether part pp has a dof in an equation of `cs`.
+   pure logical function in_equations(part, pp, cs) result(yes)
+      integer(ip), intent(in) :: part(:)
+      integer, intent(in) :: pp
+      type(constraint_set_t), intent(in) :: cs
+      integer :: q, j
+      yes = .false.
+      do q = 1, cs%n
+         if (part((cs%dep(q) + 1)/2) == pp) yes = .true.
+         do j = cs%ptr(q), cs%ptr(q + 1) - 1
+            if (part((cs%dof(j) + 1)/2) == pp) yes = .true.
          end do
-      end function tied
-      logical function touched(pp)
-         integer, intent(in) :: pp
-         integer :: kk
-         touched = .false.
-         if (.not. present(springs)) return
-         do kk = 1, size(springs)
-            if (springs(kk)%part_slave == pp .or. springs(kk)%part_master == pp) then
-               touched = .true.
-               return
-            end if
-         end do
-      end function touched
-   end subroutine check_supports
+         if (yes) return
+      end do
+   end function in_equations
 end module vemcontact_driver_supports
