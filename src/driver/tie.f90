@@ -3,9 +3,14 @@
 !> vemcontact_contact_insertion, insert_tie_nodes), each slave node has a master
 !> node at the same point and its two dofs are tied to it, u_s - u_m = 0: the two
 !> traces, interpolated on the same nodes, are one field, so a tied patch of any
-!> two meshes passes the patch test.  Other slave nodes (every node of a tie with
-!> FEM sides, and slave nodes that found no partner) are tied as CalculiX ties
-!> them: projected onto the closest side of the master face (the straight side,
+!> two meshes passes the patch test.  Where one face is of FEM elements, its
+!> corners were inserted into the other (insert_fem_corners) and the virtual face's
+!> nodes are tied to the FEM face by closest points, the faces' roles swapped when
+!> the deck names the virtual face the master (tie_t%reverse; a held node of the
+!> virtual face then holds the FEM node it lies on instead): every FEM node is a
+!> node of the virtual face, whose trace becomes the FEM face's.  Other slave nodes
+!> (every node of a tie of two FEM faces, and slave nodes that found no partner) are
+!> tied as CalculiX ties them: projected onto the closest side of the master face (the straight side,
 !> or the quadratic curve through a second-order side's three nodes), each dof
 !> tied to the face there, u_s - sum_j N_j(xi) u_j = 0, N_j the side's shape
 !> functions; a master node between two slave nodes is then not held, and the
