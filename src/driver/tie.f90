@@ -10,10 +10,10 @@
 !> virtual face then holds the FEM node it lies on instead): every FEM node is a
 !> node of the virtual face, whose trace becomes the FEM face's.  Other slave nodes
 !> (every node of a tie of two FEM faces, and slave nodes that found no partner) are
-!> tied as CalculiX ties them: projected onto the closest side of the master face (the straight side,
-!> or the quadratic curve through a second-order side's three nodes), each dof
-!> tied to the face there, u_s - sum_j N_j(xi) u_j = 0, N_j the side's shape
-!> functions; a master node between two slave nodes is then not held, and the
+!> tied as CalculiX ties them: projected onto the closest side of the master face
+!> (the straight side, or the quadratic curve through a second-order side's three
+!> nodes), each dof tied to the face there, u_s - sum_j N_j(xi) u_j = 0, N_j the
+!> side's shape functions; a master node between two slave nodes is then not held, and the
 !> traces coincide only where every master node is also a slave node.  The
 !> constraints join the *EQUATION ones (vemcontact_driver_equations eliminates
 !> them), so a tie costs no penalty and keeps the system positive definite.
