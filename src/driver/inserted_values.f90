@@ -51,15 +51,18 @@ contains
       integer :: ns, i, j, k
       allocate (ends(2, model%nnode), source=0_ip)
       allocate (t(model%nnode), source=0.0_wp)
+      k = int(maxval(model%elem_ptr(2:) - model%elem_ptr(:model%nelem)))
+      allocate (c(k), mid(k), tc(k))
       do e = 1, model%nelem
+         ! only the elements that took a node (the interfaces' neighbours)
+         if (.not. any(model%elem_conn(model%elem_ptr(e):model%elem_ptr(e + 1) - 1) > n0)) cycle
          call element_side(model, e, 1, abc, ns)
-         allocate (c(ns), mid(ns), tc(ns))
          do k = 1, ns
             call element_side(model, e, k, abc, ns)
             c(k) = abc(1)
             mid(k) = abc(3)
          end do
-         if (any(c > n0) .and. any(c <= n0)) then
+         if (any(c(:ns) > n0) .and. any(c(:ns) <= n0)) then
             do i = 1, ns
                if (c(i) <= n0) cycle
                j = back(i)
@@ -83,7 +86,6 @@ contains
                end if
             end do
          end if
-         deallocate (c, mid, tc)
       end do
    contains
       !> The nearest deck corner before corner i (cyclic).
