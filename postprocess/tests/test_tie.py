@@ -227,16 +227,23 @@ y = 1.0
 """
 
 
-@pytest.mark.parametrize("order, slave", [(1, "UPPER"), (1, "LOWER"), (2, "UPPER")])
-def test_voronoi_tied_to_quads_is_exact(exe, tmp_path, order, slave):
-    """Voronoi cells (VPE or VPE2) tied to 3 x 3 quads (VEM formulation) along y = 1, the
-    interfaces meshed independently; either side the slave.  The linear field prescribed
-    at every boundary node is reproduced at every node, and each element's stress is
-    the field's constant stress (plane strain), to 1e-10 (round-off, measured 1e-14)."""
+@pytest.mark.parametrize("quads", ["vem", "fem"])
+@pytest.mark.parametrize("order, slave", [(1, "UPPER"), (1, "LOWER"), (2, "UPPER"), (2, "LOWER")])
+def test_voronoi_tied_to_quads_is_exact(exe, tmp_path, order, slave, quads):
+    """Voronoi cells (VPE or VPE2) tied to 3 x 3 quads (VPE/VPE2, or CPE4/CPE8) along
+    y = 1, the interfaces meshed independently; either side the slave (a node surface,
+    IFACE_SLAVE).  The linear field prescribed at every boundary node is reproduced at
+    every node, and each element's stress is the field's constant stress (plane
+    strain), to 1e-10 (round-off, measured 1e-14).  With FEM quads as the slave, the
+    closest-point tie missed by 8.7 % (k = 1) and 6.1 % (k = 2): the Voronoi master's
+    nodes between the quads' were free."""
     from vctools.mesh.scene import mesh_scene_file
     master = "LOWER" if slave == "UPPER" else "UPPER"
     scene = tmp_path / "blocks.toml"
-    scene.write_text(VORONOI_SCENE.format(order=order, slave=slave, master=master))
+    text = VORONOI_SCENE.format(order=order, slave=slave, master=master)
+    if quads == "fem":
+        text = text.replace('mesher = "quad"', 'mesher = "quad"\nformulation = "fem"')
+    scene.write_text(text)
     (path, m), = mesh_scene_file(scene, out=tmp_path / "blocks.inp", echo=None)
     lines = [f"*INCLUDE, INPUT={path}", "*TIE, NAME=GLUE", "IFACE_SLAVE, IFACE_MASTER",
              "*MATERIAL, NAME=M", "*ELASTIC", f"{E}, {NU}",

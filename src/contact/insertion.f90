@@ -150,8 +150,8 @@ contains
    !> node of the virtual face too; tied to the FEM face at their closest points, the
    !> virtual face's nodes then make its trace the FEM face's (vemcontact_driver_tie).
    !> `reverse`: the virtual face is the master (its nodes are to be tied to the slave
-   !> face, which must then be an element surface).  An error, with the model
-   !> unchanged, when neither or both faces are of virtual elements or the orders differ.
+   !> face's sides, slave_edges').  An error, with the model unchanged, when neither or
+   !> both faces are of virtual elements or the orders differ.
    subroutine insert_fem_corners(model, p, nadded, reverse, error)
       type(model_t), intent(inout) :: model
       integer, intent(in) :: p
@@ -184,10 +184,6 @@ contains
       end if
       reverse = .not. allocated(err_m)
       if (reverse) then
-         if (model%surfaces(model%pairs(p)%slave)%kind /= surface_element) then
-            call fatal_error(error, 'error: a FEM slave face of TYPE=NODE cannot be a master', err_input)
-            return
-         end if
          vface = face_sides(model, melem, mside)
          fface = face_sides(model, selem, sside)
          velem = melem

@@ -6,8 +6,9 @@
 !> two meshes passes the patch test.  Where one face is of FEM elements, its
 !> corners were inserted into the other (insert_fem_corners) and the virtual face's
 !> nodes are tied to the FEM face by closest points, the faces' roles swapped when
-!> the deck names the virtual face the master (tie_t%reverse; a held node of the
-!> virtual face then holds the FEM node it lies on instead): every FEM node is a
+!> the deck names the virtual face the master (tie_t%reverse: the slave face's
+!> sides as a contact pair's, slave_edges; a held node of the virtual face then
+!> holds the FEM node it lies on instead): every FEM node is a
 !> node of the virtual face, whose trace becomes the FEM face's.  Other slave nodes
 !> (every node of a tie of two FEM faces, and slave nodes that found no partner) are
 !> tied as CalculiX ties them: projected onto the closest side of the master face
@@ -27,6 +28,8 @@ module vemcontact_driver_tie
    use vemcontact_model, only: model_t, equation_t, dof_value_t, source_loc_t, surface_node, location_string, &
                                element_side
    use vemcontact_contact_insertion, only: snap_rel
+   use vemcontact_contact_surfaces, only: slave_edges
+   use vemcontact_model, only: contact_pair_t
    implicit none
    private
 
@@ -93,7 +96,8 @@ contains
       ! reverse: the master face (virtual elements, which took the FEM slave face's
       ! nodes) is tied to the slave face
       if (model%ties(t)%reverse) then
-         call master_faces(model, model%ties(t)%slave, faces)
+         call slave_faces(model, t, faces, error)
+         if (allocated(error)) return
          slaves = slave_nodes(model, model%ties(t)%master)
          which = 'master face node '
          other = ' from the slave surface'
@@ -213,6 +217,28 @@ contains
          end do
       end associate
    end subroutine master_faces
+
+   !> The sides (a, b, side node or 0) of the slave face of tie t: an element
+   !> surface's facets, or the mesh boundary sides that a node surface's nodes span
+   !> (slave_edges, as for a contact pair).
+   subroutine slave_faces(model, t, faces, error)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: t
+      integer(ip), allocatable, intent(out) :: faces(:, :)
+      type(error_t), allocatable, intent(out) :: error
+      type(contact_pair_t) :: pair
+      integer(ip), allocatable :: edge(:, :), eelem(:)
+      integer, allocatable :: eside(:)
+      integer :: k, ns
+      pair%slave = model%ties(t)%slave
+      pair%master = model%ties(t)%master
+      call slave_edges(model, pair, edge, eelem, eside, error)
+      if (allocated(error)) return
+      allocate (faces(3, size(eelem)))
+      do k = 1, size(eelem)
+         call element_side(model, eelem(k), eside(k), faces(:, k), ns)
+      end do
+   end subroutine slave_faces
 
    !> The nodes of the slave surface, unique: of its sides (side nodes included) or
    !> its node list.
