@@ -140,14 +140,22 @@ module vemcontact_model
       type(source_loc_t) :: loc               !< the line with the number of terms
    end type equation_t
 
-   !> A *TIE: the slave surface's nodes bonded to the master surface (element sides),
-   !> each slave node to the point of the master face closest to it
-   !> (vemcontact_driver_tie), by linear constraints as CalculiX's.
+   !> A *TIE: the slave surface's nodes bonded to the master surface (element sides)
+   !> by linear constraints (vemcontact_driver_tie): node to node where the interface
+   !> nodes were inserted into both faces (virtual elements), else each slave node to
+   !> the point of the master face closest to it, as CalculiX.
    type :: tie_t
       character(len=:), allocatable :: name       !< upper case
       character(len=:), allocatable :: slave_name, master_name
       integer :: slave = 0, master = 0             !< indices into model%surfaces
       real(wp) :: tolerance = -1.0_wp             !< POSITION TOLERANCE; < 0: the default
+      !> the (slave node, master node) pairs made by the interface node insertion
+      !> (vemcontact_contact_insertion, insert_tie_nodes); unallocated: no insertion
+      integer(ip), allocatable :: partner(:, :)
+      !> the slave face's elements are FEM and the master's virtual: the slave face's
+      !> nodes were inserted into the master face, whose nodes are then tied to the
+      !> slave face (closest points), the roles of the faces swapped
+      logical :: reverse = .false.
       type(source_loc_t) :: loc
    end type tie_t
 

@@ -96,6 +96,38 @@ def test_meshio_reads_one_kind_meshes(runs, deck):
     assert ours == cells_vtu
 
 
+@pytest.mark.parametrize("deck", ["dam_joint", "hertz_329_vem2"])
+def test_meshio_polygons_go_through_to_meshio(runs, deck):
+    """No XDMF layout carries polygons to meshio 5.3.5 (docs/output-format.md, "XDMF and
+    meshio"): its XDMF reader and writer map no XDMF cell kind to its "polygon" (neither
+    the Polygon topology nor kind 3 inside Mixed), so JOB.xdmf of a VEM mesh fails in
+    meshio whatever the layout (a KeyError on the kind), and `meshio convert` cannot write
+    polygons to XDMF.  The documented route: vctools.open(JOB.h5).to_meshio(step), whose
+    cells and U are those of the datasets JOB.xdmf references, and which meshio writes
+    to a .vtu that it reads back unchanged."""
+    import vctools
+    from meshio.xdmf import common
+
+    assert "Polygon" not in common.xdmf_to_meshio_type and "polygon" not in common.meshio_to_xdmf_type
+    xdmf = runs / deck / f"{deck}.xdmf"
+    with pytest.raises(KeyError), meshio.xdmf.TimeSeriesReader(str(xdmf)) as r:
+        r.read_points_cells()
+    res = vctools.open(str(runs / deck / f"{deck}.h5"))
+    m = res.to_meshio(-1)
+    cells_vtu, _ = vtu_cells(runs / deck / f"{deck}_{len(res.steps):04d}.vtu")
+    ours = {int(i): tuple(c) for b, bid in zip(m.cells, m.cell_data["ELEMENT_ID"]) for i, c in zip(bid, b.data)}
+    assert ours == cells_vtu
+    assert any(b.type == "polygon" for b in m.cells)
+    with h5py.File(runs / deck / f"{deck}.h5") as f:
+        np.testing.assert_array_equal(m.points[:, :2], f["mesh/coordinates"][...])
+        np.testing.assert_array_equal(m.point_data["U"], f["steps"][sorted(f["steps"])[-1]]["U"][...])
+    out = runs / deck / "exported.vtu"
+    m.write(out)
+    back = meshio.read(out)
+    np.testing.assert_array_equal(back.point_data["U"], m.point_data["U"])
+    assert [(b.type, b.data.tolist()) for b in back.cells] == [(b.type, b.data.tolist()) for b in m.cells]
+
+
 def _vtk_reader():
     vtk = pytest.importorskip("vtk")
     if not hasattr(vtk, "vtkXdmfReader"):

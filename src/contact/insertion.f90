@@ -26,6 +26,7 @@ module vemcontact_contact_insertion
    use vemcontact_model, only: model_t, surface_t, dload_t, step_t, source_loc_t, location_string, &
                                surface_element, surface_node, form_fem, etype_polygon, etype_polygon2, dload_pressure, &
                                dload_hydrostatic, pair_surface_to_surface, element_order, element_side
+   use vemcontact_model, only: contact_pair_t
    use vemcontact_contact_surfaces, only: master_segments, slave_edges
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, end_tol
    use vemcontact_contact_geometry, only: length2
@@ -33,6 +34,7 @@ module vemcontact_contact_insertion
    private
 
    public :: insert_interface_nodes, project_onto_sides, on_face
+   public :: insert_tie_nodes
 
    !> A projection within snap_rel of a side's length from one of its end nodes is
    !> that node: nodes that coincide in the mesh (matching faces of a joint) do so up
@@ -81,6 +83,135 @@ contains
          end if
       end do
    end subroutine insert_interface_nodes
+
+   !> The insertion of a SURFACE TO SURFACE pair for every *TIE: the corners of each
+   !> face are inserted into the other face's sides, so that the tied interface is node
+   !> to node and tying the pairs (vemcontact_driver_tie) makes the two traces one
+   !> field, piecewise linear (or quadratic) on the union of both faces' nodes.  The
+   !> pairs are stored in model%ties(t)%partner.  When only one face is of virtual
+   !> elements, the FEM face's corners are inserted into it (insert_fem_corners) and
+   !> its nodes are then tied to the FEM face by closest points.  A tie whose insertion
+   !> is refused (two FEM faces, first- and second-order sides together, a split side
+   !> held by a *BOUNDARY, a face that is not on the outer boundary) keeps no partners
+   !> and is tied by closest points; the refusals are checks made before anything is
+   !> inserted, so the model is then unchanged.  `added(t)`: the nodes inserted for tie
+   !> t, -1 for a tie left to closest points.  insert_pair reads the two surfaces from
+   !> model%pairs, so each tie runs as a pair appended there for the time of its
+   !> insertion.
+   subroutine insert_tie_nodes(model, added)
+      type(model_t), intent(inout) :: model
+      integer(ip), allocatable, intent(out) :: added(:)
+      type(contact_pair_t), allocatable :: kept(:)
+      type(contact_pair_t) :: pair
+      type(error_t), allocatable :: err
+      integer :: t, n
+      if (.not. allocated(model%ties)) then
+         allocate (added(0))
+         return
+      end if
+      allocate (added(size(model%ties)), source=-1_ip)
+      do t = 1, size(model%ties)
+         if (model%ties(t)%slave == 0 .or. model%ties(t)%master == 0) cycle
+         pair%slave = model%ties(t)%slave
+         pair%master = model%ties(t)%master
+         pair%formulation = pair_surface_to_surface
+         pair%loc = model%ties(t)%loc
+         if (allocated(model%pairs)) then
+            kept = model%pairs
+            model%pairs = [kept, pair]
+         else
+            model%pairs = [pair]
+         end if
+         n = size(model%pairs)
+         call insert_pair(model, n, added(t), err)
+         if (allocated(err)) then
+            deallocate (err)
+            call insert_fem_corners(model, n, added(t), model%ties(t)%reverse, err)
+            if (allocated(err)) then
+               added(t) = -1
+               model%ties(t)%reverse = .false.
+               deallocate (err)
+            end if
+         else
+            call move_alloc(model%pairs(n)%partner, model%ties(t)%partner)
+         end if
+         if (allocated(kept)) then
+            model%pairs = kept
+            deallocate (kept)
+         else
+            deallocate (model%pairs)
+         end if
+      end do
+   end subroutine insert_tie_nodes
+
+   !> One way, for a *TIE (pair p) of a face of virtual elements and a face of FEM
+   !> elements: the FEM face's corners are inserted into the virtual face's sides where
+   !> they project onto them (closest points), so that every node of the FEM face is a
+   !> node of the virtual face too; tied to the FEM face at their closest points, the
+   !> virtual face's nodes then make its trace the FEM face's (vemcontact_driver_tie).
+   !> `reverse`: the virtual face is the master (its nodes are to be tied to the slave
+   !> face's sides, slave_edges').  An error, with the model unchanged, when neither or
+   !> both faces are of virtual elements or the orders differ.
+   subroutine insert_fem_corners(model, p, nadded, reverse, error)
+      type(model_t), intent(inout) :: model
+      integer, intent(in) :: p
+      integer(ip), intent(out) :: nadded
+      logical, intent(out) :: reverse
+      type(error_t), allocatable, intent(out) :: error
+      type(error_t), allocatable :: err_m, err_s
+      integer(ip), allocatable :: mseg(:, :), melem(:), sseg(:, :), selem(:), vface(:, :), fface(:, :), fnode(:)
+      integer(ip), allocatable :: vnode(:), on(:), partner(:), velem(:)
+      integer, allocatable :: mside(:), sside(:), vside(:)
+      real(wp), allocatable :: xi(:)
+      type(insertion_t), allocatable :: ins(:), mids(:)
+      logical, allocatable :: on_slave(:)
+      integer :: order, m
+      nadded = 0
+      reverse = .false.
+      call master_segments(model, model%pairs(p), mseg, melem, mside, error)
+      if (allocated(error)) return
+      melem = model%surfaces(model%pairs(p)%master)%elem
+      mside = model%surfaces(model%pairs(p)%master)%side
+      call slave_edges(model, model%pairs(p), sseg, selem, sside, error)
+      if (allocated(error)) return
+      call check_orders(model, [melem, selem], order, error)
+      if (allocated(error)) return
+      call check_virtual(model, melem, err_m)
+      call check_virtual(model, selem, err_s)
+      if (allocated(err_m) .eqv. allocated(err_s)) then
+         call fatal_error(error, 'error: one face of virtual elements, one of FEM elements expected', err_input)
+         return
+      end if
+      reverse = .not. allocated(err_m)
+      if (reverse) then
+         vface = face_sides(model, melem, mside)
+         fface = face_sides(model, selem, sside)
+         velem = melem
+         vside = mside
+      else
+         vface = face_sides(model, selem, sside)
+         fface = face_sides(model, melem, mside)
+         velem = selem
+         vside = sside
+      end if
+      ! the FEM corners that are not nodes of the virtual face already
+      vnode = unique_nodes(vface(1:2, :), model%nnode)
+      fnode = unique_nodes(fface(1:2, :), model%nnode)
+      fnode = pack(fnode, .not. is_in(fnode, vnode, model%nnode))
+      call project_onto_face(model%x, vface, fnode, 2.0_wp*max(longest_side(model%x, vface), &
+                             longest_side(model%x, fface)), on, xi, error)
+      if (allocated(error)) return
+      allocate (ins(count(on > 0)))
+      m = 0
+      call partners(vface, velem, vside, on, xi, ins, m, partner)
+      ins = ins(:m)
+      call check_constrained_sides(model, ins, error)
+      if (allocated(error)) return
+      call apply_insertions(model, ins, nadded, mids)
+      allocate (on_slave(model%nelem), source=.false.)
+      if (.not. reverse) on_slave(selem) = .true.
+      call add_to_sets(model, [ins, mids], model%pairs(p)%slave, on_slave)
+   end subroutine insert_fem_corners
 
    !> Insertion and partners of pair p.  Each face is a list of sides (a, b, m): the
    !> corners a -> b in element orientation and the side node m of a second-order side

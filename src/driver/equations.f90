@@ -218,7 +218,8 @@ contains
       end do
    end function dependent_dofs
 
-   !> k <- T^T k T, equation by equation (serial matrices only).  The pattern and
+   !> k <- T^T k T, equation by equation.  Linear in k: on several processes each
+   !> passes its share of the matrix, and the eliminated shares add up to T^T K T.  The pattern and
    !> its node graph adj_ptr/adj must come from equation_graph (the rows of column d
    !> below its diagonal are found through the neighbours of d's node, so the work
    !> is that of the couplings, not of the matrix size).  `ok` false if an entry is

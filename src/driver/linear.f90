@@ -145,11 +145,6 @@ contains
       self%solver%shares = self%dist
       call resolve_equations(model, self%cs, error)
       if (allocated(error)) return
-      if (self%dist .and. self%cs%n > 0) then
-         call fatal_error(error, 'error: *EQUATION constraints are eliminated on one process only: '// &
-                          'run this deck without mpirun', err_solver)
-         return
-      end if
       allocate (u0(2*model%nnode), source=0.0_wp)
       call self%build_system(model, error, contact, u0)
    end subroutine setup
@@ -216,6 +211,13 @@ contains
             call assemble_stiffness(model, self%k, error)
             if (.not. allocated(error)) call fatal_error(error, 'internal error: an element failed on one '// &
                                                          'process only', err_solver)
+            return
+         end if
+         ! T^T K T is linear in K: the eliminated shares add up to the eliminated matrix
+         call eliminate_equations(self%cs, self%k, adj_ptr, adj, ok)
+         if (.not. ok) then
+            call fatal_error(error, 'internal error: an *EQUATION coupling is outside the matrix pattern', &
+                             err_solver)
             return
          end if
          kdiag = [(self%k%val(self%k%col_ptr(j + 1) - 1), j=1, self%k%n)]
@@ -355,7 +357,7 @@ contains
          self%refactorized = any(fixed .neqv. self%factored_fixed)
       end if
       if (self%refactorized) then
-         call check_supports(model, self%part, self%nparts, fixed, error)
+         call check_supports(model, self%part, self%nparts, fixed, error, cs=self%cs)
          if (allocated(error)) return
          call copy_values(self%k, self%kb)
          call self%constrain(self%kb, fixed, st%prescribed, f, .true., error)
@@ -419,7 +421,7 @@ contains
       end if
       f = fext
       call contact%add_rhs(f)
-      call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part))
+      call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part), self%cs)
       if (allocated(error)) return
       call self%constrain(self%kb, fixed, prescribed, f, .true., error)
    end subroutine contact_matrix

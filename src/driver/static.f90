@@ -42,6 +42,8 @@ module vemcontact_driver_static
    use vemcontact_output_print, only: has_print_requests, write_print_csv
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_insertion, only: insert_tie_nodes
+   use vemcontact_driver_inserted_values, only: interpolate_inserted
    use vemcontact_contact_friction, only: tangent_stick, tangent_slip
    use vemcontact_log, only: logger_t
    use vemcontact_driver_strength_reduction, only: srm_result_t, run_strength_reduction, reduced_strength
@@ -198,6 +200,8 @@ contains
       type(run_state_t), intent(inout) :: rs
       type(error_t), allocatable, intent(out) :: error
       type(string_t), allocatable :: warnings(:)
+      integer(ip), allocatable :: tie_added(:)
+      integer(ip) :: n0
       character(len=256) :: buf
       integer :: iw
       ! the magnitudes before anything is computed from them (the contact stiffness
@@ -208,8 +212,13 @@ contains
       ! an overclosure no contact starts with)
       call check_contact_pairs(model, error)
       if (allocated(error)) return
+      ! the ties' insertions first: the contact pairs then see the faces as they stay
+      n0 = model%nnode
+      call insert_tie_nodes(model, tie_added)
+      call report_ties(model, tie_added, log)
       call rs%contact%init(model, error)
       if (allocated(error)) return
+      call interpolate_inserted(model, n0)
       call report_model(model, rs%contact, log)
       call rs%sys%setup(model, opts%ordering, error, rs%contact, opts%solver)
       if (allocated(error)) return
@@ -241,6 +250,29 @@ contains
       ! contact surfaces and pairs, parts, unused nodes, element warnings
       call log%lap('set-up')
    end subroutine set_up
+
+   !> How each *TIE is made: node to node after `added(t)` nodes were inserted, the
+   !> virtual face tied to the FEM face after `added(t)` of its nodes were inserted, or
+   !> by closest points (added(t) < 0).
+   subroutine report_ties(model, added, log)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: added(:)
+      type(logger_t), intent(inout) :: log
+      character(len=256) :: buf
+      integer :: t
+      do t = 1, size(added)
+         if (allocated(model%ties(t)%partner)) then
+            write (buf, '(a,i0,a,i0,a)') ': ', added(t), ' interface nodes inserted, ', &
+               size(model%ties(t)%partner, 2), ' node pairs tied'
+         else if (added(t) >= 0) then
+            write (buf, '(a,i0,a)') ': ', added(t), ' FEM face nodes inserted into the virtual face, '// &
+               'whose nodes are tied to the FEM face'
+         else
+            buf = ': closest-point tie (no insertion: FEM faces, first- and second-order sides, or a held side)'
+         end if
+         call log%say('  tie '//model%ties(t)%name//trim(buf))
+      end do
+   end subroutine report_ties
 
    !> The set-up report of the model: interface nodes, sizes, contact pairs.
    subroutine report_model(model, contact, log)

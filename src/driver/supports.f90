@@ -10,6 +10,7 @@ module vemcontact_driver_supports
    use vemcontact_model, only: model_t, location_string
    use vemcontact_linalg_lapack, only: dsyev
    use vemcontact_contact_spring, only: spring_t
+   use vemcontact_driver_equations, only: constraint_set_t
    implicit none
    private
 
@@ -83,18 +84,24 @@ contains
    !> x a row n.(r_p(x) - r_q(x)) = 0 coupling the slave's part p and the master's
    !> part q.  A null vector of the rows is a mechanism: the parts with a share of
    !> it float.  Frictionless springs hold only along n, so a body resting on a
-   !> frictionless plane is rightly reported as free to slide.
-   subroutine check_supports(model, part, nparts, fixed, error, springs)
+   !> frictionless plane is rightly reported as free to slide.  With `cs`, the
+   !> linear constraints (*EQUATION, *TIE) resolved to independent dofs: their
+   !> dependent dofs (held in `fixed`, since they are eliminated) are no supports; each
+   !> equation u_d = sum a_j u_j is a row coupling the parts of its dofs instead, so a
+   !> part held only through another part's equations is held, and a part whose
+   !> dependent dofs hang on a floating part floats with it.
+   subroutine check_supports(model, part, nparts, fixed, error, springs, cs)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: part(:), nparts
       logical, intent(in) :: fixed(:)
       type(error_t), allocatable, intent(out) :: error
       type(spring_t), intent(in), optional :: springs(:)
+      type(constraint_set_t), intent(in), optional :: cs
       real(wp), allocatable :: lo(:, :), hi(:, :), ctc(:, :), ev(:), work(:), c(:, :), sc(:)
       integer(ip), allocatable :: nelem(:), first_elem(:)
       real(wp) :: r(6), v(3), share
       integer :: p, q, i, e, k, info, m, cols(6), nr
-      logical, allocatable :: reported(:)
+      logical, allocatable :: reported(:), held(:)
       character(len=200) :: buf
       character(len=:), allocatable :: motion
       if (nparts == 0) return
@@ -118,12 +125,17 @@ contains
       c = 0.5_wp*(lo + hi)
       sc = max(maxval(hi - lo, dim=1), tiny(1.0_wp))
       allocate (ctc(m, m), source=0.0_wp)
+      held = fixed
+      if (present(cs)) then
+         if (cs%n > 0) held(cs%dep) = .false.
+      end if
       do i = 1, model%nnode
          p = part(i)
          if (p == 0) cycle
-         if (fixed(2*i - 1)) call add_row([1.0_wp, 0.0_wp, -(model%x(2, i) - c(2, p))/sc(p)], [3*p - 2, 3*p - 1, 3*p], 3)
-         if (fixed(2*i)) call add_row([0.0_wp, 1.0_wp, (model%x(1, i) - c(1, p))/sc(p)], [3*p - 2, 3*p - 1, 3*p], 3)
+         if (held(2*i - 1)) call add_row([1.0_wp, 0.0_wp, -(model%x(2, i) - c(2, p))/sc(p)], [3*p - 2, 3*p - 1, 3*p], 3)
+         if (held(2*i)) call add_row([0.0_wp, 1.0_wp, (model%x(1, i) - c(1, p))/sc(p)], [3*p - 2, 3*p - 1, 3*p], 3)
       end do
+      if (present(cs)) call equation_rows(model, part, c, sc, cs, ctc)
       if (present(springs)) then
          do k = 1, size(springs)
             p = springs(k)%part_slave
@@ -150,9 +162,9 @@ contains
             share = norm2(v)
             if (share < 1.0e-3_wp .or. reported(p)) cycle
             reported(p) = .true.
-            nr = count(fixed(2*pack([(i, i=1, model%nnode)], part == p) - 1)) + &
-                 count(fixed(2*pack([(i, i=1, model%nnode)], part == p)))
-            if (nr == 0 .and. .not. touched(p)) then
+            nr = count(held(2*pack([(i, i=1, model%nnode)], part == p) - 1)) + &
+                 count(held(2*pack([(i, i=1, model%nnode)], part == p)))
+            if (nr == 0 .and. .not. touched(p) .and. .not. tied(p)) then
                motion = 'it has no support at all (no *BOUNDARY on any of its nodes'
                if (allocated(model%pairs)) then
                   if (size(model%pairs) > 0) motion = motion//' and no closed contact'
@@ -185,6 +197,11 @@ contains
             end do
          end do
       end subroutine add_row
+      logical function tied(pp)
+         integer, intent(in) :: pp
+         tied = .false.
+         if (present(cs)) tied = in_equations(part, pp, cs)
+      end function tied
       logical function touched(pp)
          integer, intent(in) :: pp
          integer :: kk
@@ -198,4 +215,67 @@ contains
          end do
       end function touched
    end subroutine check_supports
+
+   !> Add to ctc the rows of the equations of `cs`: the rigid motion of the dependent
+   !> dof's part at its node minus the weighted motions of its terms' parts at theirs
+   !> (rows over all 3 nparts unknowns, in check_supports' scaled coordinates c, sc).
+   pure subroutine equation_rows(model, part, c, sc, cs, ctc)
+      type(model_t), intent(in) :: model
+      integer(ip), intent(in) :: part(:)
+      real(wp), intent(in) :: c(:, :), sc(:)
+      type(constraint_set_t), intent(in) :: cs
+      real(wp), intent(inout) :: ctc(:, :)
+      real(wp), allocatable :: row(:)
+      integer, allocatable :: nz(:)
+      integer :: q, j, a, b
+      allocate (row(size(ctc, 1)))
+      do q = 1, cs%n
+         row = 0.0_wp
+         call add_motion(row, int(cs%dep(q)), 1.0_wp)
+         do j = cs%ptr(q), cs%ptr(q + 1) - 1
+            call add_motion(row, int(cs%dof(j)), -cs%a(j))
+         end do
+         nz = pack([(j, j=1, size(row))], row /= 0.0_wp)
+         do b = 1, size(nz)
+            do a = 1, size(nz)
+               ctc(nz(a), nz(b)) = ctc(nz(a), nz(b)) + row(nz(a))*row(nz(b))
+            end do
+         end do
+      end do
+   contains
+      !> row += w times the rigid motion (translations, rotation) of the part of dof
+      !> `dof` along that dof, at its node.
+      pure subroutine add_motion(row, dof, w)
+         real(wp), intent(inout) :: row(:)
+         integer, intent(in) :: dof
+         real(wp), intent(in) :: w
+         integer :: node, pp
+         node = (dof + 1)/2
+         pp = part(node)
+         if (pp == 0) return
+         if (mod(dof, 2) == 1) then
+            row(3*pp - 2) = row(3*pp - 2) + w
+            row(3*pp) = row(3*pp) - w*(model%x(2, node) - c(2, pp))/sc(pp)
+         else
+            row(3*pp - 1) = row(3*pp - 1) + w
+            row(3*pp) = row(3*pp) + w*(model%x(1, node) - c(1, pp))/sc(pp)
+         end if
+      end subroutine add_motion
+   end subroutine equation_rows
+
+   !> Whether part pp has a dof in an equation of `cs`.
+   pure logical function in_equations(part, pp, cs) result(yes)
+      integer(ip), intent(in) :: part(:)
+      integer, intent(in) :: pp
+      type(constraint_set_t), intent(in) :: cs
+      integer :: q, j
+      yes = .false.
+      do q = 1, cs%n
+         if (part((cs%dep(q) + 1)/2) == pp) yes = .true.
+         do j = cs%ptr(q), cs%ptr(q + 1) - 1
+            if (part((cs%dof(j) + 1)/2) == pp) yes = .true.
+         end do
+         if (yes) return
+      end do
+   end function in_equations
 end module vemcontact_driver_supports

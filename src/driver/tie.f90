@@ -1,21 +1,35 @@
-!> *TIE: the constraints that bond a slave surface to a master surface, as
-!> CalculiX makes them: each slave node is projected onto the closest side of
-!> the master face (the straight side, or the quadratic curve through a
-!> second-order side's three nodes), and each of its two dofs is tied to the
-!> face there, u_s - sum_j N_j(xi) u_j = 0, N_j the side's shape functions.  The
+!> *TIE: the constraints that bond a slave surface to a master surface.  Where the
+!> interface nodes were inserted into both faces (virtual elements:
+!> vemcontact_contact_insertion, insert_tie_nodes), each slave node has a master
+!> node at the same point and its two dofs are tied to it, u_s - u_m = 0: the two
+!> traces, interpolated on the same nodes, are one field, so a tied patch of any
+!> two meshes passes the patch test.  Where one face is of FEM elements, its
+!> corners were inserted into the other (insert_fem_corners) and the virtual face's
+!> nodes are tied to the FEM face by closest points, the faces' roles swapped when
+!> the deck names the virtual face the master (tie_t%reverse: the slave face's
+!> sides as a contact pair's, slave_edges; a held node of the virtual face then
+!> holds the FEM node it lies on instead): every FEM node is a
+!> node of the virtual face, whose trace becomes the FEM face's.  Other slave nodes
+!> (every node of a tie of two FEM faces, and slave nodes that found no partner) are
+!> tied as CalculiX ties them: projected onto the closest side of the master face
+!> (the straight side, or the quadratic curve through a second-order side's three
+!> nodes), each dof tied to the face there, u_s - sum_j N_j(xi) u_j = 0, N_j the
+!> side's shape functions; a master node between two slave nodes is then not held, and the
+!> traces coincide only where every master node is also a slave node.  The
 !> constraints join the *EQUATION ones (vemcontact_driver_equations eliminates
 !> them), so a tie costs no penalty and keeps the system positive definite.
-!> Any field linear in x and y satisfies them exactly, so a tied patch of
-!> non-matching meshes passes the patch test (the exact solution lies in the
-!> constrained space).  Skipped: slave nodes that are nodes of the master face,
-!> and slave dofs that a *BOUNDARY prescribes or an *EQUATION makes dependent
-!> (CalculiX drops those ties too).  A slave node farther from the master than
-!> the position tolerance (default 5 % of the mean master side) is an error.
+!> Skipped: slave nodes that are nodes of the master face, and slave dofs that a
+!> *BOUNDARY prescribes or an *EQUATION makes dependent (CalculiX drops those
+!> ties too).  A slave node farther from its master point than the position
+!> tolerance (default 5 % of the mean master side) is an error.
 module vemcontact_driver_tie
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t, fatal_error, append_message, err_input
    use vemcontact_model, only: model_t, equation_t, dof_value_t, source_loc_t, surface_node, location_string, &
                                element_side
+   use vemcontact_contact_insertion, only: snap_rel
+   use vemcontact_contact_surfaces, only: slave_edges
+   use vemcontact_model, only: contact_pair_t
    implicit none
    private
 
@@ -78,7 +92,21 @@ contains
       integer :: k, f, bf, nf, d, nbad, m, j
       integer(ip) :: s
       character(len=24) :: b1, b2, b3
-      call master_faces(model, model%ties(t)%master, faces)
+      character(len=:), allocatable :: which, other
+      ! reverse: the master face (virtual elements, which took the FEM slave face's
+      ! nodes) is tied to the slave face
+      if (model%ties(t)%reverse) then
+         call slave_faces(model, t, faces, error)
+         if (allocated(error)) return
+         slaves = slave_nodes(model, model%ties(t)%master)
+         which = 'master face node '
+         other = ' from the slave surface'
+      else
+         call master_faces(model, model%ties(t)%master, faces)
+         slaves = slave_nodes(model, model%ties(t)%slave)
+         which = 'slave node '
+         other = ' from the master surface'
+      end if
       nf = size(faces, 2)
       allocate (on_master(model%nnode), source=.false.)
       do f = 1, nf
@@ -94,8 +122,21 @@ contains
          end do
          tol = 0.05_wp*tol/max(nf, 1)
       end if
-      slaves = slave_nodes(model, model%ties(t)%slave)
       nbad = 0
+      ! node to node: the partners of the insertion, whose faces are the same curve
+      if (allocated(model%ties(t)%partner)) then
+         do k = 1, size(model%ties(t)%partner, 2)
+            s = model%ties(t)%partner(1, k)
+            if (on_master(s)) cycle
+            on_master(s) = .true.   ! tied here: not again by its closest point
+            call check_distance(norm2(model%x(:, s) - model%x(:, model%ties(t)%partner(2, k))))
+            do d = 1, 2
+               if (taken(2*s - 2 + d)) cycle
+               taken(2*s - 2 + d) = .true.
+               call push(eqs, neq, s, d, model%ties(t)%partner(2:2, k), [1.0_wp], model%ties(t)%loc)
+            end do
+         end do
+      end if
       do k = 1, size(slaves)
          s = slaves(k)
          if (on_master(s)) cycle
@@ -111,20 +152,16 @@ contains
             end if
          end do
          if (bf == 0) cycle
-         if (best > tol) then
-            nbad = nbad + 1
-            write (b1, '(i0)') model%node_id(s)
-            write (b2, '(es10.3)') best
-            write (b3, '(es10.3)') tol
-            if (nbad <= max_listed) call append_message(error, location_string(model, model%ties(t)%loc)// &
-               ': error: slave node '//trim(b1)//' of *TIE '//model%ties(t)%name//' is '//trim(adjustl(b2))// &
-               ' from the master surface, beyond the position tolerance '//trim(adjustl(b3)), err_input)
-            cycle
-         end if
+         call check_distance(best)
+         if (best > tol) cycle
          m = merge(3, 2, faces(3, bf) > 0)
          w(1:m) = shape(bxi, m)
          do d = 1, 2
-            if (taken(2*s - 2 + d)) cycle
+            if (taken(2*s - 2 + d)) then
+               ! reverse: a held master node at a FEM node holds that node instead
+               if (model%ties(t)%reverse) call hold_fem_node(d)
+               cycle
+            end if
             taken(2*s - 2 + d) = .true.
             call push(eqs, neq, s, d, faces(1:m, bf), w(1:m), model%ties(t)%loc)
          end do
@@ -133,6 +170,36 @@ contains
          write (b1, '(i0)') nbad - max_listed
          call append_message(error, '... and '//trim(b1)//' more')
       end if
+   contains
+      !> An error for slave node s at `dist` from its master point beyond the tolerance.
+      subroutine check_distance(dist)
+         real(wp), intent(in) :: dist
+         if (.not. dist > tol) return
+         nbad = nbad + 1
+         write (b1, '(i0)') model%node_id(s)
+         write (b2, '(es10.3)') dist
+         write (b3, '(es10.3)') tol
+         if (nbad <= max_listed) call append_message(error, location_string(model, model%ties(t)%loc)// &
+            ': error: '//which//trim(b1)//' of *TIE '//model%ties(t)%name//' is '//trim(adjustl(b2))// &
+            other//', beyond the position tolerance '//trim(adjustl(b3)), err_input)
+      end subroutine check_distance
+
+      !> Dof d of node s (held) lies on an end node of face bf (within snap_rel of the
+      !> side): that node's dof d tied to s's, when nothing else prescribes it.
+      subroutine hold_fem_node(d)
+         integer, intent(in) :: d
+         integer(ip) :: fn
+         if (bxi <= snap_rel) then
+            fn = faces(1, bf)
+         else if (bxi >= 1.0_wp - snap_rel) then
+            fn = faces(2, bf)
+         else
+            return
+         end if
+         if (taken(2*fn - 2 + d)) return
+         taken(2*fn - 2 + d) = .true.
+         call push(eqs, neq, fn, d, [s], [1.0_wp], model%ties(t)%loc)
+      end subroutine hold_fem_node
    end subroutine tie_one
 
    !> Master faces (a, b, side node or 0) of surface `surf`.
@@ -150,6 +217,28 @@ contains
          end do
       end associate
    end subroutine master_faces
+
+   !> The sides (a, b, side node or 0) of the slave face of tie t: an element
+   !> surface's facets, or the mesh boundary sides that a node surface's nodes span
+   !> (slave_edges, as for a contact pair).
+   subroutine slave_faces(model, t, faces, error)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: t
+      integer(ip), allocatable, intent(out) :: faces(:, :)
+      type(error_t), allocatable, intent(out) :: error
+      type(contact_pair_t) :: pair
+      integer(ip), allocatable :: edge(:, :), eelem(:)
+      integer, allocatable :: eside(:)
+      integer :: k, ns
+      pair%slave = model%ties(t)%slave
+      pair%master = model%ties(t)%master
+      call slave_edges(model, pair, edge, eelem, eside, error)
+      if (allocated(error)) return
+      allocate (faces(3, size(eelem)))
+      do k = 1, size(eelem)
+         call element_side(model, eelem(k), eside(k), faces(:, k), ns)
+      end do
+   end subroutine slave_faces
 
    !> The nodes of the slave surface, unique: of its sides (side nodes included) or
    !> its node list.

@@ -116,7 +116,9 @@ set_tests_properties(petsc_solvers PROPERTIES LABELS deck)
 # the serial CHOLMOD answer: a body load, two contact decks and a cantilever with nonzero
 # prescribed displacements and loads in two steps (the second without a new factorization),
 # and a slider pushed along a track whose contact iteration rebuilds the matrix pattern
-# (--rebuilds: every run must record a rebuild; the partition is kept across it);
+# (--rebuilds: every run must record a rebuild; the partition is kept across it), and
+# non-matching VEM blocks bonded by a *TIE with an *EQUATION chain (each process
+# eliminates the constraints from its share of the matrix);
 # the partition recorded in the HDF5 file checked; skipped, saying why, without PETSc or mpiexec.
 # Open MPI refuses root unless told (containers, CI run as root).
 if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
@@ -127,7 +129,7 @@ if(VC_HAVE_PETSC AND MPIEXEC_EXECUTABLE)
             "${CMAKE_CURRENT_BINARY_DIR}/petsc-solvers-np2"
             "${PROJECT_SOURCE_DIR}/inputs/block_selfweight.inp" "${PROJECT_SOURCE_DIR}/inputs/interface_voronoi_50.inp"
             "${PROJECT_SOURCE_DIR}/inputs/hertz_389_fem.inp" "${VC_DECKS}/distributed_cantilever.inp"
-            "${VC_DECKS}/sliding_rebuild.inp")
+            "${VC_DECKS}/sliding_rebuild.inp" "${VC_DECKS}/tie_equation.inp")
   set_tests_properties(petsc_solvers_np2 PROPERTIES
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1" PROCESSORS 2)
 else()

@@ -41,12 +41,18 @@ joint       the state along a contact pair (default 1) in a step (default: the
             c are the pair's values in force in that step (HDF5 attributes);
             --mu/--cohesion give them for files without.
 
+--units LENGTH[,STRESS] converts the values from the deck's units (--model-units,
+default m,Pa) as vc-plot does: coordinates, COPEN and CSLIP take the length factor,
+CPRESS and the peaks the stress factor (`--units mm,MPa` on an SI deck: x 1e3 and
+x 1e-6); --hertz, --exact and --xmax stay in the deck's units.
+
 Errors (a missing file, a CSV without the columns, a log without contact
 iterations) are one line on stderr and exit status 1.
 """
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import os
 import sys
@@ -54,7 +60,8 @@ import sys
 import numpy as np
 
 from vctools.cli import entry, positive_int
-from vctools.paper.runs import ResultError, read_contact, read_h5, read_log
+from vctools.paper.runs import ContactCurve, ResultError, read_contact, read_h5, read_log
+from vctools.plot.contour import unit_factors
 from vctools.plot.sliding import plot_joint, plot_srm
 
 #: the paper's Table 1: peak normal contact traction per penalty iteration
@@ -114,6 +121,27 @@ def _units(text: str) -> tuple[str, str]:
     return (f" [{length}]" if length else ""), (f" [{stress}]" if stress else "")
 
 
+def shown_units(units: str, model_units: str | None = None) -> tuple[float, float, str, str]:
+    """(length factor, stress factor, length label, stress label) of the axes.  With
+    `model_units` (the deck's units, e.g. "m,Pa"), `units` ("mm,MPa") is converted to,
+    as vc-plot converts (vctools.plot.contour.unit_factors); without, `units` only
+    names the values' units on the axes (factors 1)."""
+    if model_units is None or not units:
+        lu, su = _units(units)
+        return 1.0, 1.0, lu, su
+    lf, sf, length, stress = unit_factors(units, model_units)
+    return lf, sf, (f" [{length}]" if length else ""), (f" [{stress}]" if stress else "")
+
+
+def convert_curve(c: ContactCurve, lf: float, sf: float) -> ContactCurve:
+    """A copy of `c` with its coordinates, COPEN and CSLIP times lf (lengths) and
+    CPRESS times sf (a stress)."""
+    if lf == 1.0 and sf == 1.0:
+        return c
+    return dataclasses.replace(c, x=c.x * lf, y=c.y * lf, copen=c.copen * lf, cpress=c.cpress * sf,
+                               cslip=None if c.cslip is None else c.cslip * lf)
+
+
 def _save(fig, out: str) -> str:
     d = os.path.dirname(os.path.abspath(out))
     os.makedirs(d, exist_ok=True)
@@ -132,12 +160,18 @@ def _labels(n: int, given: list | None, default) -> list[str]:
 # ------------------------------------------------------------------ pressure
 def plot_pressure(curves, out: str, labels=None, hertz_args=None, along: str = "auto", units: str = "",
                   xmax: float | None = None, title: str | None = None, gap: bool = True,
-                  slip: bool = True) -> dict:
+                  slip: bool = True, model_units: str | None = None) -> dict:
     """CPRESS, COPEN and CSLIP of contact curves against the coordinate along the pair
-    (one panel each; COPEN with `gap`, CSLIP with `slip` when the files have it).
-    Returns {'a':, 'p0':} when the Hertz curve is drawn, else {}."""
+    (one panel each; COPEN with `gap`, CSLIP with `slip` when the files have it), in
+    `units` converted from `model_units` (shown_units; `hertz_args` and `xmax` are in
+    the model's units).  Returns {'peak': [peak CPRESS of each curve], 'x_peak': [its
+    coordinate along the pair]} and, when the Hertz curve is drawn, 'a' and 'p0', all
+    in the units shown."""
     plt = _plt()
-    lu, su = _units(units)
+    lf, sf, lu, su = shown_units(units, model_units)
+    curves = [convert_curve(c, lf, sf) for c in curves]
+    if xmax is not None:
+        xmax = xmax * lf
     labels = _labels(len(curves), labels, lambda i: curves[i].job)
     slip = slip and any(c.cslip is not None for c in curves)
     panels = ["CPRESS"] + (["COPEN"] if gap else []) + (["CSLIP"] if slip else [])
@@ -146,7 +180,9 @@ def plot_pressure(curves, out: str, labels=None, hertz_args=None, along: str = "
                              squeeze=False, gridspec_kw={"height_ratios": [heights[k] for k in panels]})
     ax_of = {k: axes[i, 0] for i, k in enumerate(panels)}
     axp = ax_of["CPRESS"]
-    info = {}
+    info = {"peak": [float(c.cpress.max()) if len(c.cpress) else 0.0 for c in curves],
+            "x_peak": [float(c.along(along)[0][np.argmax(c.cpress)]) if len(c.cpress) else float("nan")
+                       for c in curves]}
     xlabel = "x"
     styles = ["o-", "s-", "^-", "v-", "d-", "x-", "+-", "<-", ">-"]
     for i, (c, lab) in enumerate(zip(curves, labels)):
@@ -161,10 +197,11 @@ def plot_pressure(curves, out: str, labels=None, hertz_args=None, along: str = "
             ax_of["CSLIP"].plot(t[order], c.cslip[order], st, color=col, ms=3.0, lw=0.9, label=lab)
     if hertz_args is not None:
         a, p0, _ = hertz(*hertz_args)
+        a, p0 = a * lf, p0 * sf
         xs = np.linspace(0.0, a, 200)
         axp.plot(xs, hertz_pressure(xs, a, p0), "k--", lw=1.4,
                  label=f"Hertz (analytical): p0 = {p0:.2f}, a = {a:.3f}")
-        info = {"a": a, "p0": p0}
+        info.update(a=a, p0=p0)
     if xmax is not None:
         tmin = min(float(np.min(c.along(along)[0])) for c in curves if len(c.x))
         axp.set_xlim(left=min(0.0, tmin) - 0.02 * xmax, right=xmax)
@@ -259,10 +296,15 @@ def peak_point(run: str, pair: int = 1, step: int = 0) -> dict:
 
 
 def plot_peak(points: list[dict], out: str, exact: float | None = None, units: str = "",
-              paper: dict | None = None, title: str | None = None) -> str:
-    """`paper`: optional {label: [(nelem, peak), ...]} drawn as open markers."""
+              paper: dict | None = None, title: str | None = None, model_units: str | None = None) -> list[dict]:
+    """`paper`: optional {label: [(nelem, peak), ...]} drawn as open markers.  Peaks,
+    `exact` and `paper` are in the model's units, shown in `units` (shown_units).
+    Returns the points drawn (peak and x_peak in the units shown)."""
     plt = _plt()
-    _, su = _units(units)
+    lf, sf, _, su = shown_units(units, model_units)
+    points = [{**p, "peak": p["peak"] * sf, "x_peak": p["x_peak"] * lf} for p in points]
+    paper = {k: [(n, v * sf) for n, v in pts] for k, pts in (paper or {}).items()}
+    exact = None if exact is None else exact * sf
     fig, ax = plt.subplots(figsize=(7.0, 4.6), dpi=110)
     for i, form in enumerate(sorted({p["formulation"] for p in points}, key=lambda f: (f != "VEM", f))):
         pts = sorted((p for p in points if p["formulation"] == form), key=lambda p: p["nelem"])
@@ -279,7 +321,8 @@ def plot_peak(points: list[dict], out: str, exact: float | None = None, units: s
     ax.legend(fontsize=8)
     ax.set_title(title or "peak contact pressure against mesh size", fontsize=10)
     fig.tight_layout()
-    return _save(fig, out)
+    _save(fig, out)
+    return points
 
 
 # ------------------------------------------------------------------ iterations
@@ -320,11 +363,18 @@ def iterations_markdown(series: list[dict], paper: dict | None = None, digits: i
 
 
 def plot_iterations(series: list[dict], out: str, paper: dict | None = None, exact: float | None = None,
-                    units: str = "", title: str | None = None) -> str:
+                    units: str = "", title: str | None = None, model_units: str | None = None) -> list[dict]:
     """Two panels: every iteration on a log scale, and from iteration 2 on a
-    linear scale (the first iteration's peak can be orders of magnitude larger)."""
+    linear scale (the first iteration's peak can be orders of magnitude larger).
+    The peaks, `paper` and `exact` are in the model's units, shown in `units`
+    (shown_units; the paper's Table 1 is in its decks' units).  Returns the series
+    drawn (peaks in the units shown)."""
     plt = _plt()
-    _, su = _units(units)
+    _, sf, _, su = shown_units(units, model_units)
+    series = [{**s, "peaks": [v * sf for v in s["peaks"]]} for s in series]
+    if paper is not None:
+        paper = {k: [v * sf for v in vals] for k, vals in paper.items()}
+    exact = None if exact is None else exact * sf
     fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.6), dpi=110)
     nmax = 1
     for ax, first in zip(axes, (1, 2)):
@@ -352,7 +402,8 @@ def plot_iterations(series: list[dict], out: str, paper: dict | None = None, exa
     axes[1].legend(fontsize=7.5)
     fig.suptitle(title or "peak contact pressure per iteration", fontsize=11)
     fig.tight_layout()
-    return _save(fig, out)
+    _save(fig, out)
+    return series
 
 
 # ------------------------------------------------------------------ command line
@@ -361,6 +412,15 @@ def _table(rows: list[dict], keys: list[str]) -> str:
     for r in rows:
         lines.append("| " + " | ".join(f"{r[k]:.5g}" if isinstance(r[k], float) else str(r[k]) for k in keys) + " |")
     return "\n".join(lines) + "\n"
+
+
+def units_options(sp) -> None:
+    """--units and --model-units, as vc-plot's."""
+    sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]",
+                    help="units to show, converted from --model-units (as vc-plot): lengths (coordinates, COPEN, "
+                         "CSLIP) in the first, contact pressures in the second, e.g. mm,MPa")
+    sp.add_argument("--model-units", default="m,Pa", metavar="LENGTH,STRESS",
+                    help="the deck's units (default m,Pa); --hertz, --exact and --xmax are in these units")
 
 
 @entry("vc-curves")
@@ -385,7 +445,7 @@ def main(argv=None) -> int:
     sp.add_argument("--along", choices=["auto", "x", "y", "s"], default="auto",
                     help="coordinate along the pair (default auto: x, y or the distance s)")
     sp.add_argument("--label", action="append", help="legend label of each run, in order (repeatable)")
-    sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]", help="units on the axes, e.g. m,Pa")
+    units_options(sp)
     sp.add_argument("--xmax", type=float, default=None, help="right end of the x axis")
     sp.add_argument("--no-gap", action="store_true", help="without the COPEN panel")
     sp.add_argument("--no-slip", action="store_true", help="without the CSLIP panel")
@@ -400,7 +460,7 @@ def main(argv=None) -> int:
     g.add_argument("--hertz", metavar="P,R,E1,NU1,E2,NU2", help="analytical line at the Hertz p0")
     g.add_argument("--exact", type=float, default=None, help="analytical line at this value")
     sp.add_argument("--pair", type=int, default=1)
-    sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]")
+    units_options(sp)
 
     sp = sub.add_parser("iterations", help="peak pressure per active-set iteration (Table 1)")
     common(sp, "iterations.png")
@@ -408,7 +468,7 @@ def main(argv=None) -> int:
     sp.add_argument("--step", type=positive_int, default=0, help="step with contact iterations, 1-based (default: last)")
     sp.add_argument("--paper-table1", action="store_true", help="the paper's Table 1 beside ours (matched by K)")
     sp.add_argument("--markdown", default=None, metavar="FILE", help="also write the Markdown table to FILE")
-    sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]")
+    units_options(sp)
 
     sp = sub.add_parser("srm", help="F against u_char of a strength-reduction step, and the factor of safety")
     sp.add_argument("runs", nargs=1, metavar="JOB.h5", help="run folder or its JOB.h5")
@@ -432,12 +492,12 @@ def main(argv=None) -> int:
             hz = parse_hertz(a.hertz) if a.hertz else None
             curves = [read_contact(r, a.pair, a.step) for r in a.runs]
             info = plot_pressure(curves, a.output, labels=a.label, hertz_args=hz, along=a.along, units=a.units,
-                                 xmax=a.xmax, title=a.title, gap=not a.no_gap, slip=not a.no_slip)
-            for c in curves:
-                k = int(np.argmax(c.cpress)) if len(c.cpress) else 0
+                                 xmax=a.xmax, title=a.title, gap=not a.no_gap, slip=not a.no_slip,
+                                 model_units=a.model_units)
+            for c, peak in zip(curves, info["peak"]):
                 print(f"{c.job}: {int(c.closed.sum())} of {len(c.closed)} slave nodes closed, "
-                      f"peak CPRESS {c.cpress[k] if len(c.cpress) else 0.0:.6g}")
-            if info:
+                      f"peak CPRESS {peak:.6g}")
+            if "a" in info:
                 print(f"Hertz: a = {info['a']:.4f}, p0 = {info['p0']:.4f}")
         elif a.cmd == "deflection":
             pts = [cantilever_point(r, a.exact) for r in a.runs]
@@ -447,7 +507,7 @@ def main(argv=None) -> int:
         elif a.cmd == "peak":
             exact = hertz(*parse_hertz(a.hertz))[1] if a.hertz else a.exact
             pts = [peak_point(r, a.pair) for r in a.runs]
-            plot_peak(pts, a.output, exact=exact, units=a.units, title=a.title)
+            pts = plot_peak(pts, a.output, exact=exact, units=a.units, title=a.title, model_units=a.model_units)
             print(_table(sorted(pts, key=lambda q: (q["formulation"], q["nelem"])),
                          ["job", "formulation", "nelem", "peak"]), end="")
         elif a.cmd == "srm":
@@ -463,8 +523,11 @@ def main(argv=None) -> int:
         else:
             series = iteration_series(a.runs, a.label, a.step)
             paper = PAPER_TABLE1 if a.paper_table1 else None
-            plot_iterations(series, a.output, paper=paper, units=a.units, title=a.title)
-            md = iterations_markdown(series, paper)
+            shown = plot_iterations(series, a.output, paper=paper, units=a.units, title=a.title,
+                                    model_units=a.model_units)
+            _, sf, _, _ = shown_units(a.units, a.model_units)
+            md = iterations_markdown(shown, None if paper is None else
+                                     {k: [v * sf for v in vals] for k, vals in paper.items()})
             if a.markdown:
                 with open(a.markdown, "w") as fh:
                     fh.write(md)

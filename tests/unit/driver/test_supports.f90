@@ -6,10 +6,12 @@ program test_supports
    use vemcontact_model, only: model_t, string_t, source_loc_t
    use vemcontact_driver_supports, only: find_parts, check_supports, unused_nodes
    use vemcontact_contact_spring, only: spring_t
+   use vemcontact_driver_equations, only: constraint_set_t
    implicit none
    type(checker_t) :: t
    type(model_t) :: m
    type(error_t), allocatable :: error
+   type(constraint_set_t) :: cs
    integer(ip), allocatable :: part(:)
    integer(ip) :: nparts
    logical :: fixed(16)
@@ -85,5 +87,37 @@ program test_supports
    call check_supports(m, part, nparts, fixed, error, [spring_t::])
    call t%check(allocated(error), 'no closed contact')
    if (allocated(error)) call t%check(index(error%message, 'no closed contact') > 0, 'says so: '//error%message)
+   ! linear constraints (*EQUATION, *TIE): part 2 held only through equations that make
+   ! three dofs of part 2 (node 5 x and y, node 6 y) depend on clamped part 1's node 3
+   ! and node 2: held, though its only "fixed" dofs are the eliminated dependents
+   deallocate (m%pairs)
+   cs%n = 3
+   cs%dep = [9_ip, 10_ip, 12_ip]
+   cs%ptr = [1, 2, 3, 4]
+   cs%dof = [5_ip, 6_ip, 4_ip]
+   cs%a = [1.0_wp, 1.0_wp, 1.0_wp]
+   fixed = .false.
+   fixed([1, 2, 7]) = .true.
+   fixed(cs%dep) = .true.
+   call check_supports(m, part, nparts, fixed, error, cs=cs)
+   call t%check(.not. allocated(error), 'a part held by equations on a held part')
+   ! the same with part 1 free: the dependents of part 2 held nothing, both parts float
+   ! together (before the equations were rows, the dependents counted as supports)
+   fixed(1:8) = .false.
+   call check_supports(m, part, nparts, fixed, error, cs=cs)
+   call t%check(allocated(error), 'parts joined by equations float together')
+   if (allocated(error)) call t%check(index(error%message, 'part 1') > 0 .and. index(error%message, 'part 2') > 0, &
+                                      'both named: '//error%message)
+   ! the independent side unsupported, the dependent side clamped: the equations make
+   ! part 1's nodes 2 and 3 follow part 2 (x of node 2, y of nodes 2 and 3)
+   cs%dep = [3_ip, 4_ip, 6_ip]
+   cs%dof = [9_ip, 10_ip, 12_ip]
+   fixed = .false.
+   fixed([1, 2, 7]) = .true.
+   fixed(cs%dep) = .true.
+   call check_supports(m, part, nparts, fixed, error, cs=cs)
+   call t%check(.not. allocated(error), 'a part held as the independent side of equations')
+   call check_supports(m, part, nparts, fixed, error)
+   call t%check(allocated(error), 'without the equations it floats')
    call t%finish()
 end program test_supports
