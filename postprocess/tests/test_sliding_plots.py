@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 import vctools
+import vctools.plot.sliding
 from vctools.plot import curves
 from vctools.plot.results import ResultError
 from vctools.plot.sliding import chain_order, joint_data, srm_data
@@ -75,6 +76,21 @@ def test_joint_command_line(rock_block, tmp_path):
     rc = curves.main(["joint", str(rock_block), "--step", "2", "--mu", repr(MU), "--cohesion", repr(C),
                       "-o", str(out)])
     assert rc == 0 and out.exists()
+
+
+def test_joint_units_convert(rock_block, tmp_path):
+    """--units converts (vc-plot's factors), not only relabels: the SI run drawn in mm and
+    kPa has arc lengths x 1e3 and stresses x 1e-3 of the same run drawn in its own units."""
+    si = joint_data(str(rock_block), 2, mu=MU, cohesion=C)
+    d = vctools.plot.sliding.plot_joint(str(rock_block), str(tmp_path / "u.png"), step=2, mu=MU,
+                                        cohesion=C, units="mm,kPa")
+    assert np.allclose(d["s"], 1e3 * si["s"], rtol=1e-14)
+    for k in ("CPRESS", "CFLUIDP", "shear", "strength"):
+        assert np.allclose(d[k], 1e-3 * np.asarray(si[k]), rtol=1e-14, atol=0.0)
+    assert d["cohesion"] == pytest.approx(1e-3 * C, rel=1e-14)
+    rc = curves.main(["joint", str(rock_block), "--step", "2", "--mu", repr(MU), "--cohesion", repr(C),
+                      "--units", "mm,kPa", "-o", str(tmp_path / "v.png")])
+    assert rc == 0
 
 
 def test_joint_needs_the_strength(rock_block, tmp_path, capsys):

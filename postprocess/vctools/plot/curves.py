@@ -484,7 +484,7 @@ def main(argv=None) -> int:
     sp.add_argument("--pair", type=positive_int, default=1, help="contact pair (default 1)")
     sp.add_argument("--mu", type=float, default=None, help="friction coefficient (default: the file's)")
     sp.add_argument("--cohesion", type=float, default=None, help="cohesion (default: the file's, else 0)")
-    sp.add_argument("--units", default="", metavar="LENGTH[,STRESS]")
+    units_options(sp)
 
     a = p.parse_args(argv)
     try:
@@ -515,7 +515,8 @@ def main(argv=None) -> int:
             print(f"step {d['step']}: {len(d['F'])} trials ({int(d['converged'].sum())} converged), "
                   f"factor of safety {d['factor_of_safety']:.6g}")
         elif a.cmd == "joint":
-            d = plot_joint(a.runs[0], a.output, a.step, a.pair, a.mu, a.cohesion, title=a.title, units=a.units)
+            d = plot_joint(a.runs[0], a.output, a.step, a.pair, a.mu, a.cohesion, title=a.title, units=a.units,
+                           model_units=a.model_units)
             counts = ", ".join(f"{int((d['STATUS'] == k).sum())} {n}" for k, n in
                                ((0, "open"), (1, "closed"), (3, "stick"), (4, "slip")) if (d["STATUS"] == k).any())
             print(f"step {d['step']}, pair {d['pair']}: {len(d['s'])} slave nodes over {d['s'][-1]:.6g} "

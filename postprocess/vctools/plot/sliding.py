@@ -20,6 +20,7 @@ import os
 import numpy as np
 
 from vctools.plot.results import ResultError
+from vctools.plot.contour import unit_factors
 
 #: STATUS codes of /steps/NNNN/contact/pair_K/STATUS (docs/output-format.md)
 STATUS_NAMES = {0: "open", 1: "closed", 2: "slid off", 3: "stick", 4: "slip"}
@@ -201,14 +202,23 @@ def joint_data(path: str, step: int = 0, pair: int = 1, mu: float | None = None,
 
 
 def plot_joint(path: str, out: str, step: int = 0, pair: int = 1, mu: float | None = None,
-               cohesion: float | None = None, title: str | None = None, units: str = "") -> dict:
+               cohesion: float | None = None, title: str | None = None, units: str = "",
+               model_units: str = "m,Pa") -> dict:
     """Two panels along the joint: the normal stresses (CPRESS, CFLUIDP) and the shear
-    (|CSHEAR| against c + mu CPRESS); markers coloured by STATUS.  Returns joint_data's dict."""
+    (|CSHEAR| against c + mu CPRESS); markers coloured by STATUS.  `units` converts from
+    `model_units` as vc-plot does (arc length by the length factor, stresses by the
+    stress factor; the returned dict holds the converted values).  Returns
+    joint_data's dict."""
     d = joint_data(path, step, pair, mu, cohesion)
+    lf, sf, length, stress = unit_factors(units, model_units)
+    d["s"] = d["s"]*lf
+    for k in ("CPRESS", "CFLUIDP", "shear", "strength"):
+        if k in d and d[k] is not None:
+            d[k] = np.asarray(d[k])*sf
+    d["cohesion"] = d["cohesion"]*sf
     plt = _plt()
-    parts = (units or "").split(",")
-    lu = f" [{parts[0].strip()}]" if parts[0].strip() else ""
-    su = f" [{parts[1].strip()}]" if len(parts) > 1 and parts[1].strip() else ""
+    lu = f" [{length}]" if length else ""
+    su = f" [{stress}]" if stress else ""
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.5, 6.4), dpi=110, sharex=True)
     s = d["s"]
     a1.plot(s, d["CPRESS"], "-", color="#1f77b4", lw=1.1, label="effective pressure CPRESS")
