@@ -38,6 +38,13 @@ module vemcontact_contact_iteration
    !> the tangent or a factor of a nearby pairing, 3-10 were measured
    !> (docs/contact-robustness.md); a factor too far away stalls early instead.
    integer, parameter :: gmres_restart = 10, gmres_maxit = 30
+   !> ... and with friction: each slipping entry's force follows its normal force
+   !> (an unsymmetric rank-one term per slipping entry, which the factor lacks) and
+   !> each stick/slip change since the factor is a rank-one term more; on the dam
+   !> (23-36 slipping entries of 43) restarts every 10 iterations stalled with a few
+   !> changes, and each stall cost a factorization (3 per step); with 30 and 60, 1-2
+   !> per step (bench/friction_cost.py, docs/performance.md)
+   integer, parameter :: gmres_restart_friction = 30, gmres_maxit_friction = 60
    !> The reduction of the residual a solve aims at (krylov_solve)
    real(wp), parameter :: gmres_reduction = 1.0e-6_wp
    !> ... and with slipping friction: the solve then is the frozen system itself (not
@@ -623,7 +630,12 @@ contains
       end if
       allocate (dx(size(s%u0)), source=0.0_wp)
       t0 = wall_time()
-      call gmres(s%op, s%r, dx, tol_abs, floor_abs, gmres_restart, gmres_maxit, 0.5_wp, res, error)
+      if (contact%fric%on) then
+         call gmres(s%op, s%r, dx, tol_abs, floor_abs, gmres_restart_friction, gmres_maxit_friction, 0.5_wp, res, &
+                    error)
+      else
+         call gmres(s%op, s%r, dx, tol_abs, floor_abs, gmres_restart, gmres_maxit, 0.5_wp, res, error)
+      end if
       sys%t_solve = sys%t_solve + (wall_time() - t0)
       if (allocated(error)) return
       x = s%u0 + dx
