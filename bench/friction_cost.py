@@ -4,7 +4,7 @@ numeric factorizations of the frictionless matrix; the whole frictional run at m
 3x the same model frictionless with the same increments).
 
 usage: python bench/friction_cost.py [--exe build/vemcontact] [--dofs 1e5 1e6]
-           [--increments 4] [--dam] [--csv bench/results/friction_cost.csv]
+           [--increments 4] [--dam] [--repeat 1] [--csv bench/results/friction_cost.csv]
 
 Models:
   block  a block (2 x 0.5) pressed on a foundation (4 x 2) by a pressure on its top,
@@ -138,13 +138,17 @@ def run(exe, deck, out):
     return {"dofs": dofs, "wall": secs, "rss": rss, "steps": steps, "stick": stick, "slip": slip, "t_factorize": fact}
 
 
-def pair(exe, name, make, work):
+def pair(exe, name, make, work, repeat=1):
+    """Frictionless then frictional, `repeat` times in turn; the fastest run of each."""
     rows = {}
-    for friction in (False, True):
-        tag = "mu" if friction else "mu0"
-        deck = os.path.join(work, f"{name}_{tag}.inp")
-        make(deck, friction)
-        rows[tag] = run(exe, deck, os.path.join(work, f"out_{name}_{tag}"))
+    for _ in range(repeat):
+        for friction in (False, True):
+            tag = "mu" if friction else "mu0"
+            deck = os.path.join(work, f"{name}_{tag}.inp")
+            make(deck, friction)
+            r = run(exe, deck, os.path.join(work, f"out_{name}_{tag}"))
+            if tag not in rows or r["wall"] < rows[tag]["wall"]:
+                rows[tag] = r
     fr, f0 = rows["mu"], rows["mu0"]
     dofs = fr["dofs"]
     nf0 = sum(f for _, f in f0["steps"])
@@ -173,6 +177,7 @@ def main():
     ap.add_argument("--dofs", type=float, nargs="*", default=[1e5, 1e6])
     ap.add_argument("--increments", type=int, default=4)
     ap.add_argument("--dam", action="store_true", help="the paper's dam too")
+    ap.add_argument("--repeat", type=int, default=1, help="runs of each pair (the fastest kept)")
     ap.add_argument("--csv", default=None)
     ap.add_argument("--work", default=None)
     a = ap.parse_args()
@@ -180,9 +185,9 @@ def main():
     os.makedirs(work, exist_ok=True)
     rows = []
     if a.dam:
-        rows.append(pair(a.exe, "dam", dam_deck, work))
+        rows.append(pair(a.exe, "dam", dam_deck, work, a.repeat))
     for n in a.dofs:
-        rows.append(pair(a.exe, f"block_{n:.0e}", lambda d, fr, n=n: block_deck(d, int(n), a.increments, fr), work))
+        rows.append(pair(a.exe, f"block_{n:.0e}", lambda d, fr, n=n: block_deck(d, int(n), a.increments, fr), work, a.repeat))
     if a.csv:
         with open(a.csv, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0]))
