@@ -1084,12 +1084,22 @@ contains
 
    !> Start a load state: the springs of HARD entries soften to K h/E = 10 (their
    !> pair's search_ratio) for the search of the active set (augment stiffens
-   !> them again); the multipliers are kept from the previous state.
+   !> them again); the multipliers are kept from the previous state.  An entry that
+   !> ends the previous state closed and carrying force keeps its stiff spring: its
+   !> multiplier already holds it, there is nothing to search, and the first solve
+   !> of the new state then has the matrix of the previous state's factor when the
+   !> active set holds (one numeric factorization less per load increment:
+   !> softening and stiffening again were two new matrices, bench/friction_cost.py).
    subroutine start_state(self)
       class(contact_state_t), intent(inout) :: self
       integer :: i
       do i = 1, self%n
-         if (self%pairs(self%pair(i))%hard) self%k(i) = self%pairs(self%pair(i))%search_ratio*self%k_full(i)
+         if (.not. self%pairs(self%pair(i))%hard) cycle
+         if (self%active(i) .and. self%iseg(i) > 0 .and. self%lambda(i) > 0.0_wp) then
+            self%k(i) = self%k_full(i)
+         else
+            self%k(i) = self%pairs(self%pair(i))%search_ratio*self%k_full(i)
+         end if
       end do
    end subroutine start_state
 

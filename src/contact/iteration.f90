@@ -38,6 +38,22 @@ module vemcontact_contact_iteration
    !> the tangent or a factor of a nearby pairing, 3-10 were measured
    !> (docs/contact-robustness.md); a factor too far away stalls early instead.
    integer, parameter :: gmres_restart = 10, gmres_maxit = 30
+   !> ... and with friction, for a solve with the factor of earlier stick/slip states:
+   !> each slipping entry's force follows its normal force (an unsymmetric rank-one
+   !> term per slipping entry, which the factor lacks) and each stick/slip change
+   !> since the factor is a rank-one term more; on the dam (23-36 slipping entries of
+   !> 43) restarts every 10 iterations stalled with a few changes, and each stall cost
+   !> a factorization (3 per step); with 30 and 60, 1-2 per step (bench/friction_cost.py,
+   !> docs/performance.md).  The solves with the factor of the current states keep
+   !> the restarts of 10: their more frequent fresh residuals reach 8e-15 of the
+   !> dam's forces where cycles of 30 stopped at 1.6e-13 (its law checks need 1e-8 of
+   !> the largest pressure)
+   integer, parameter :: gmres_restart_friction = 30, gmres_maxit_friction = 60
+   !> ... going on below the round-off floor while each iteration still lowers the
+   !> residual by a tenth (with the old factor the rate is slower than the halving that
+   !> the other solves ask: stopped there, the dam's forces kept 1.6e-13 of residual,
+   !> 2e-8 of the largest pressure in its law checks, against 8e-15)
+   real(wp), parameter :: gmres_stall_friction = 0.9_wp
    !> The reduction of the residual a solve aims at (krylov_solve)
    real(wp), parameter :: gmres_reduction = 1.0e-6_wp
    !> ... and with slipping friction: the solve then is the frozen system itself (not
@@ -348,7 +364,12 @@ contains
          ! a small move of the pairing, or a few stick/slip changes alone
          if (near_key(sys%factored_key, contact, pairing_drift) .or. &
              flips_within(stick_flips(sys%factored_key, contact), max_stick_flips)) then
-            call krylov_solve(s, sys, fixed, fext, u, contact, solved, error)
+            if (contact%fric%on) then
+               call krylov_solve(s, sys, fixed, fext, u, contact, solved, error, gmres_restart_friction, &
+                                 gmres_maxit_friction, gmres_stall_friction)
+            else
+               call krylov_solve(s, sys, fixed, fext, u, contact, solved, error, gmres_restart, gmres_maxit, 0.5_wp)
+            end if
             if (allocated(error)) return
          end if
       end if
@@ -364,7 +385,7 @@ contains
       ! friction whose force follows the normal force): GMRES with the factor
       coupled = contact%has_coupling()
       if (.not. solved .and. (s%op%sliding .or. coupled)) then
-         call krylov_solve(s, sys, fixed, fext, u, contact, solved, error)
+         call krylov_solve(s, sys, fixed, fext, u, contact, solved, error, gmres_restart, gmres_maxit, 0.5_wp)
          if (allocated(error)) return
       end if
       if (.not. solved) then
@@ -587,7 +608,7 @@ contains
    !> with the current factor (of this or a nearby pairing), to a millionth of the
    !> initial residual or its round-off floor.  ok: GMRES converged; otherwise x is
    !> its last iterate.
-   subroutine krylov_solve(s, sys, fixed, fext, x, contact, ok, error)
+   subroutine krylov_solve(s, sys, fixed, fext, x, contact, ok, error, restart, maxit, stall)
       type(iteration_state_t), intent(inout) :: s
       class(contact_system_t), intent(inout) :: sys
       logical, intent(in) :: fixed(:)
@@ -596,6 +617,10 @@ contains
       type(contact_state_t), intent(in) :: contact
       logical, intent(out) :: ok
       type(error_t), allocatable, intent(out) :: error
+      !> GMRES's restart length and iteration limit
+      integer, intent(in) :: restart, maxit
+      !> below the floor, GMRES goes on while each iteration lowers the residual by this factor
+      real(wp), intent(in) :: stall
       real(wp), allocatable :: dx(:)
       type(gmres_result_t) :: res
       real(wp) :: rel0, tol_abs, floor_abs, t0
@@ -611,9 +636,25 @@ contains
       if (contact%has_coupling() .and. .not. s%op%sliding) tol_abs = gmres_reduction_friction*safe_norm2(s%r)
       floor_abs = 0.0_wp
       if (rel0 > 0.0_wp) floor_abs = 1.0e3_wp*epsilon(1.0_wp)*safe_norm2(s%r)/rel0
+      ! a residual that starts below that floor is not all round-off: the floor is a
+      ! bound, and a multiplier update late in the iteration (gaps of 6e-13 of the
+      ! element, forces of 5e-9 of the largest, on the block of bench/friction_cost.py)
+      ! starts there.  GMRES stopped at its first iteration, the update stayed
+      ! unapplied and was proposed again at every iteration until MAXIT; it must then
+      ! lower the residual a thousandfold (or fail: a new factorization), and goes on
+      ! below that while it halves it, as below the floor (stopped at the thousandth
+      ! with the factor of earlier stick/slip states, the dam's forces kept 1.6e-13
+      ! of residual, 2e-8 of the largest pressure in its law checks, against 8e-15)
+      if (safe_norm2(s%r) <= floor_abs) floor_abs = 1.0e-3_wp*safe_norm2(s%r)
+      ! with the factor of earlier stick/slip states (stall > 0.5) GMRES's rate has
+      ! plateaus near the floor, where one iteration that barely lowered the residual
+      ! stopped it at the floor itself (1e3 eps: 2e-8 of the dam's largest pressure in
+      ! its law checks, where the current factor reached 1e-9): a floor a hundred
+      ! times lower there, below which it goes on while each iteration gains a tenth
+      if (stall > 0.5_wp) floor_abs = 1.0e-2_wp*floor_abs
       allocate (dx(size(s%u0)), source=0.0_wp)
       t0 = wall_time()
-      call gmres(s%op, s%r, dx, tol_abs, floor_abs, gmres_restart, gmres_maxit, 0.5_wp, res, error)
+      call gmres(s%op, s%r, dx, tol_abs, floor_abs, restart, maxit, stall, res, error)
       sys%t_solve = sys%t_solve + (wall_time() - t0)
       if (allocated(error)) return
       x = s%u0 + dx
