@@ -112,12 +112,14 @@ def test_rock_block_without_cohesion(exe, tmp_path, tag):
     assert F == pytest.approx(fs, rel=0.01), (F, fs)
 
 
-@pytest.mark.xfail(strict=True, reason="the default probe at the mobilized-strength estimate: trials at "
-                   "F = 1.0756 and 1.0714, from the F = 1 state, fail by active-set cycles even cut back (numerical, not a "
-                   "mechanism: 1.0781 holds from the 1.5 bracket), so the search stops at 1.0692, -1.03 %")
 def test_rock_block_default_search(exe, tmp_path):
-    """The crack6 deck without its data line (the search's default first trial): the same
-    1 % as above.  Strict: when the search gets it right, remove the mark."""
+    """The crack6 deck without its data line (the search's default first trial, the
+    probes at the mobilized-strength estimate from the F = 1 state).  Near the limit the
+    joint's end node at the crack has no consistent open/closed state (closed, its
+    cohesion pulls it open; open, the block moves into it); the contact iteration holds
+    it closed (pin_cycle) instead of failing the trial by a cycle, which stopped this
+    search at 1.0692 (-1.03 %).  Within 0.5 % of the limit equilibrium: the search's
+    tolerance (1e-3) plus the mesh's share that the given-first-trial run shows (-0.2 %)."""
     text = open(os.path.join(ROOT, "inputs", "rock_block_crack6.inp")).read()
     assert "\n1.5, 100.\n" in text
     text = text.replace("\n1.5, 100.\n", "\n").replace("INPUT=meshes/",
@@ -127,4 +129,4 @@ def test_rock_block_default_search(exe, tmp_path):
     assert r.returncode == 0, r.stderr
     with h5py.File(tmp_path / "d.h5") as f:
         F = float(f["steps/0003"].attrs["factor_of_safety"])
-    assert F == pytest.approx(limit_equilibrium(6.0, 20000.0)[0], rel=0.01), F
+    assert F == pytest.approx(limit_equilibrium(6.0, 20000.0)[0], rel=0.005), F
