@@ -83,14 +83,19 @@ contains
    !> contiguously from the heel (0 when the node nearest the heel is closed), with
    !> the number of those open nodes and of all the uplift's nodes.  A node is open
    !> when its contact is not active (Abaqus' criterion with zero critical pressure).
-   pure subroutine crack_front(model, contact, which, j, up, s_tip, nopen, nall)
+   pure subroutine crack_front(model, contact, which, j, up, s_tip, nopen, nall, arc)
       type(model_t), intent(in) :: model
       type(contact_state_t), intent(in) :: contact
       integer, intent(in) :: which(:), j
       type(uplift_t), intent(in) :: up
       real(wp), intent(out) :: s_tip
       integer, intent(out) :: nopen, nall
+      !> the crack's length along the joint: from the heel to the first open slave node,
+      !> then along the slave nodes in order to the crack tip (0 when none is open);
+      !> on a kinked joint longer than the tip's projection on the heel-toe line
+      real(wp), intent(out), optional :: arc
       real(wp), allocatable :: s(:)
+      real(wp) :: x_last(2), length
       logical, allocatable :: open(:), done(:)
       integer :: i, m, next
       nall = count(which == j)
@@ -102,6 +107,8 @@ contains
       done = which /= j
       s_tip = 0.0_wp
       nopen = 0
+      length = 0.0_wp
+      x_last = up%heel
       ! the uplift's nodes in order from the heel, until the first closed one
       do m = 1, nall
          next = minloc(s, mask=.not. done, dim=1)
@@ -109,7 +116,10 @@ contains
          if (.not. open(next)) exit
          nopen = nopen + 1
          s_tip = s(next)
+         length = length + norm2(model%x(:, contact%node(next)) - x_last)
+         x_last = model%x(:, contact%node(next))
       end do
+      if (present(arc)) arc = length
    end subroutine crack_front
 
    !> Add to f the uplift's forces on both faces and set each entry's pressure

@@ -40,7 +40,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(logger_t), intent(inout), optional :: log
       integer, allocatable :: which(:), nopen(:), nall(:)
-      real(wp), allocatable :: s_tip(:), s_new(:), f(:), seen(:, :)
+      real(wp), allocatable :: s_tip(:), s_new(:), f(:), seen(:, :), arc(:), arc_new(:)
       type(iteration_record_t), allocatable :: records(:)
       integer :: pass, j, iterations, factorizations
       real(wp) :: t_fact, t_solve, t_search
@@ -53,7 +53,8 @@ contains
          return
       end if
       which = uplift_of_entries(model, contact, uplifts)
-      allocate (s_tip(size(uplifts)), s_new(size(uplifts)), source=0.0_wp)
+      allocate (s_tip(size(uplifts)), s_new(size(uplifts)), arc(size(uplifts)), arc_new(size(uplifts)), &
+                source=0.0_wp)
       allocate (nopen(size(uplifts)), nall(size(uplifts)), source=0)
       allocate (contact%cfluidp(contact%n), f(size(fext)), records(0), seen(size(uplifts), 0))
       iterations = 0
@@ -78,9 +79,10 @@ contains
          changed = .false.
          do j = 1, size(uplifts)
             if (.not. uplifts(j)%penetration) cycle
-            call crack_front(model, contact, which, j, uplifts(j), s_new(j), nopen(j), nall(j))
+            call crack_front(model, contact, which, j, uplifts(j), s_new(j), nopen(j), nall(j), arc_new(j))
             if (abs(s_new(j) - s_tip(j)) > 0.0_wp) changed = .true.
          end do
+         arc = arc_new
          if (.not. changed) exit
          ! a crack that returns to an earlier length would alternate for ever
          seen = reshape([seen, s_tip], [size(uplifts), pass])
@@ -94,7 +96,7 @@ contains
          do j = 1, size(uplifts)
             if (.not. uplifts(j)%penetration) cycle
             write (buf, '(2x,a,i0,a,es12.5,a,i0,a,i0,a)') 'pressure penetration, pass ', pass, &
-               ': water entered ', entered(j), ' from the heel (', nopen(j), ' of ', nall(j), &
+               ': water entered ', arc(j), ' along the joint from the heel (', nopen(j), ' of ', nall(j), &
                ' slave nodes open from the heel) on interaction '
             if (present(log)) call log%say(trim(buf)//' '//model%interactions(uplifts(j)%interaction)%name// &
                                            '; solving again with the headwater in the crack')
@@ -114,12 +116,6 @@ contains
       sys%t_search = t_search
       if (present(log)) call summary()
    contains
-      !> Length of the crack of uplift j that the water filled.
-      pure real(wp) function entered(j)
-         integer, intent(in) :: j
-         entered = s_tip(j)*norm2(uplifts(j)%toe - uplifts(j)%heel)
-      end function entered
-
       !> Per uplift: the uplift force (sum CFLUIDP * CNAREA) and, with penetration,
       !> how far the water entered.
       subroutine summary()
@@ -130,8 +126,8 @@ contains
                model%interactions(uplifts(j)%interaction)%name//': force ', force, &
                ' (sum of CFLUIDP * CNAREA)'
             if (uplifts(j)%penetration) then
-               write (buf, '(a,a,es12.5,a,i0,a,i0,a,i0,a)') trim(buf), '; water entered ', entered(j), &
-                  ' from the heel (', nopen(j), ' of ', nall(j), ' slave nodes open from the heel; contact '// &
+               write (buf, '(a,a,es12.5,a,i0,a,i0,a,i0,a)') trim(buf), '; water entered ', arc(j), &
+                  ' along the joint from the heel (', nopen(j), ' of ', nall(j), ' slave nodes open from the heel; contact '// &
                   'solved ', pass, ' times)'
             end if
             call log%say(trim(buf))
