@@ -68,11 +68,12 @@ def test_two_wedges_penetration_water(exe, tmp_path):
     r = subprocess.run([exe, "-q", "-o", str(tmp_path), str(tmp_path / "tw.inp")], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     with h5py.File(tmp_path / "tw.h5") as f:
-        pairs = []
+        pairs, entered = [], []
         for k in (1, 2):
             g = f[f"steps/0002/contact/pair_{k}"]
             xy = g["coordinates"][:]
             pairs.append((xy if xy.shape[-1] == 2 else xy.T, g["CFLUIDP"][:], g["STATUS"][:]))
+            entered.append(float(g.attrs["water_entered"]))
     xy = np.vstack([p[0] for p in pairs])
     p = np.concatenate([p[1] for p in pairs])
     st = np.concatenate([p[2] for p in pairs])
@@ -84,6 +85,13 @@ def test_two_wedges_penetration_water(exe, tmp_path):
     tip = s[order][k - 1]
     opened = order[:k]
     assert np.all(xy[opened, 0] < 5.0 + 1e-9), "the crack stays in the back joint"
+    # the length the water entered, along the joint: heel to the first open node, then
+    # node to node (the back joint is steeper than the heel-daylight chord, so this is
+    # longer than the tip's projection on the chord), the same on both seam pairs
+    path = np.vstack([HEEL, xy[opened]])
+    arc = float(np.sum(np.hypot(*np.diff(path, axis=0).T)))
+    assert arc > tip * np.hypot(*(DAYLIGHT - HEEL)) * (1 + 1e-3)
+    assert entered == pytest.approx([arc, arc], rel=1e-12), (entered, arc)
     assert np.allclose(p[opened], GW * (15.0 - xy[opened, 1]), rtol=1e-12)
     rest = order[k:]
     head = 15.0 + (6.6 - 15.0) * (s[rest] - tip) / (1.0 - tip)

@@ -132,6 +132,9 @@ module vemcontact_contact_active_set
       !> CFLUIDP: the uplift on each entry (vemcontact_contact_uplift), unallocated
       !> when no *UPLIFT is in force
       real(wp), allocatable :: cfluidp(:)
+      !> per pair: the length along the joint that pressure penetration filled from the
+      !> heel (-1: no penetration on the pair); unallocated when no *UPLIFT is in force
+      real(wp), allocatable :: water_entered(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
       integer(ip), allocatable :: inserted(:)  !< nodes inserted for each pair (SURFACE TO SURFACE)
       !> the tangential law of each pair and the tangential state of each entry

@@ -48,6 +48,7 @@ contains
       character(len=200) :: buf
 
       if (allocated(contact%cfluidp)) deallocate (contact%cfluidp)
+      if (allocated(contact%water_entered)) deallocate (contact%water_entered)
       if (size(uplifts) == 0) then
          call solve_contact(sys, model, fixed, prescribed, fext, u, contact, error, log)
          return
@@ -108,6 +109,11 @@ contains
          call fatal_error(error, trim(buf), err_solver)
          return
       end if
+      allocate (contact%water_entered(size(model%pairs)), source=-1.0_wp)
+      do j = 1, size(uplifts)
+         if (.not. uplifts(j)%penetration) cycle
+         where (model%pairs%interaction == uplifts(j)%interaction) contact%water_entered = arc(j)
+      end do
       sys%records = records
       sys%iterations = iterations
       sys%factorizations = factorizations
