@@ -106,7 +106,7 @@ def dam_deck(path, friction):
 
 def run(exe, deck, out):
     """Run under nice and /usr/bin/time -v: wall [s], peak RSS [MB], per step
-    (iterations, factorizations), stick and slip counts of the last step, and the
+    (iterations, factorizations) and stick and slip node counts, and the
     factorization time from the phases file."""
     cmd = ["nice", "/usr/bin/time", "-v", exe, "-q", "--no-vtu", "-o", out, deck]
     r = subprocess.run(cmd, capture_output=True, text=True, check=False)

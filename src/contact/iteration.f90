@@ -44,15 +44,11 @@ module vemcontact_contact_iteration
    !> since the factor is a rank-one term more; on the dam (23-36 slipping entries of
    !> 43) restarts every 10 iterations stalled with a few changes, and each stall cost
    !> a factorization (3 per step); with 30 and 60, 1-2 per step (bench/friction_cost.py,
-   !> docs/performance.md).  The solves with the factor of the current states keep
-   !> the restarts of 10: their more frequent fresh residuals reach 8e-15 of the
-   !> dam's forces where cycles of 30 stopped at 1.6e-13 (its law checks need 1e-8 of
-   !> the largest pressure)
+   !> docs/performance.md).  The solves with the factor of the current states keep 10
+   !> and 30.
    integer, parameter :: gmres_restart_friction = 30, gmres_maxit_friction = 60
-   !> ... going on below the round-off floor while each iteration still lowers the
-   !> residual by a tenth (with the old factor the rate is slower than the halving that
-   !> the other solves ask: stopped there, the dam's forces kept 1.6e-13 of residual,
-   !> 2e-8 of the largest pressure in its law checks, against 8e-15)
+   !> ... going on below the round-off floor (a hundred times lower for them,
+   !> krylov_solve) while each iteration still lowers the residual by a tenth
    real(wp), parameter :: gmres_stall_friction = 0.9_wp
    !> The reduction of the residual a solve aims at (krylov_solve)
    real(wp), parameter :: gmres_reduction = 1.0e-6_wp
@@ -369,12 +365,7 @@ contains
          ! a small move of the pairing, or a few stick/slip changes alone
          if (near_key(sys%factored_key, contact, pairing_drift) .or. &
              flips_within(stick_flips(sys%factored_key, contact), max_stick_flips)) then
-            if (contact%fric%on) then
-               call krylov_solve(s, sys, fixed, fext, u, contact, solved, error, gmres_restart_friction, &
-                                 gmres_maxit_friction, gmres_stall_friction)
-            else
-               call krylov_solve(s, sys, fixed, fext, u, contact, solved, error, gmres_restart, gmres_maxit, 0.5_wp)
-            end if
+            call krylov_solve(s, sys, fixed, fext, u, contact, solved, error, contact%fric%on)
             if (allocated(error)) return
          end if
       end if
@@ -390,7 +381,7 @@ contains
       ! friction whose force follows the normal force): GMRES with the factor
       coupled = contact%has_coupling()
       if (.not. solved .and. (s%op%sliding .or. coupled)) then
-         call krylov_solve(s, sys, fixed, fext, u, contact, solved, error, gmres_restart, gmres_maxit, 0.5_wp)
+         call krylov_solve(s, sys, fixed, fext, u, contact, solved, error, .false.)
          if (allocated(error)) return
       end if
       if (.not. solved) then
@@ -678,7 +669,7 @@ contains
    !> with the current factor (of this or a nearby pairing), to a millionth of the
    !> initial residual or its round-off floor.  ok: GMRES converged; otherwise x is
    !> its last iterate.
-   subroutine krylov_solve(s, sys, fixed, fext, x, contact, ok, error, restart, maxit, stall)
+   subroutine krylov_solve(s, sys, fixed, fext, x, contact, ok, error, old_states)
       type(iteration_state_t), intent(inout) :: s
       class(contact_system_t), intent(inout) :: sys
       logical, intent(in) :: fixed(:)
@@ -687,13 +678,12 @@ contains
       type(contact_state_t), intent(in) :: contact
       logical, intent(out) :: ok
       type(error_t), allocatable, intent(out) :: error
-      !> GMRES's restart length and iteration limit
-      integer, intent(in) :: restart, maxit
-      !> below the floor, GMRES goes on while each iteration lowers the residual by this factor
-      real(wp), intent(in) :: stall
+      !> the factor is that of earlier stick/slip states (gmres_restart_friction)
+      logical, intent(in) :: old_states
       real(wp), allocatable :: dx(:)
       type(gmres_result_t) :: res
-      real(wp) :: rel0, tol_abs, floor_abs, t0
+      real(wp) :: rel0, tol_abs, floor_abs, t0, stall
+      integer :: restart, maxit
       ok = .false.
       call frozen_residual(s, sys, fixed, fext, s%u0, contact, rel0)
       ! a millionth of the initial residual: an inexact Newton step that keeps the
@@ -712,16 +702,22 @@ contains
       ! starts there.  GMRES stopped at its first iteration, the update stayed
       ! unapplied and was proposed again at every iteration until MAXIT; it must then
       ! lower the residual a thousandfold (or fail: a new factorization), and goes on
-      ! below that while it halves it, as below the floor (stopped at the thousandth
-      ! with the factor of earlier stick/slip states, the dam's forces kept 1.6e-13
-      ! of residual, 2e-8 of the largest pressure in its law checks, against 8e-15)
+      ! below that while it halves it, as below the floor
       if (safe_norm2(s%r) <= floor_abs) floor_abs = 1.0e-3_wp*safe_norm2(s%r)
-      ! with the factor of earlier stick/slip states (stall > 0.5) GMRES's rate has
-      ! plateaus near the floor, where one iteration that barely lowered the residual
-      ! stopped it at the floor itself (1e3 eps: 2e-8 of the dam's largest pressure in
-      ! its law checks, where the current factor reached 1e-9): a floor a hundred
-      ! times lower there, below which it goes on while each iteration gains a tenth
-      if (stall > 0.5_wp) floor_abs = 1.0e-2_wp*floor_abs
+      restart = gmres_restart
+      maxit = gmres_maxit
+      stall = 0.5_wp
+      if (old_states) then
+         ! with the factor of earlier stick/slip states GMRES's rate has plateaus near
+         ! the floor, where one iteration that barely lowered the residual stopped it
+         ! at the floor itself (2e-8 of the dam's largest pressure in its law checks,
+         ! where the current factor reached 1e-9): a floor a hundred times lower,
+         ! below which it goes on while each iteration gains a tenth
+         restart = gmres_restart_friction
+         maxit = gmres_maxit_friction
+         stall = gmres_stall_friction
+         floor_abs = 1.0e-2_wp*floor_abs
+      end if
       allocate (dx(size(s%u0)), source=0.0_wp)
       t0 = wall_time()
       call gmres(s%op, s%r, dx, tol_abs, floor_abs, restart, maxit, stall, res, error)
