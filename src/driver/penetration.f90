@@ -13,7 +13,7 @@ module vemcontact_driver_penetration
    use vemcontact_model, only: model_t, uplift_t
    use vemcontact_contact_iteration, only: contact_system_t, iteration_record_t, solve_contact
    use vemcontact_contact_active_set, only: contact_state_t
-   use vemcontact_contact_uplift, only: uplift_of_entries, crack_front, add_uplift_forces
+   use vemcontact_contact_uplift, only: uplift_of_entries, crack_front, add_uplift_forces, slave_face_vectors
    use vemcontact_log, only: logger_t
    implicit none
    private
@@ -40,7 +40,7 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(logger_t), intent(inout), optional :: log
       integer, allocatable :: which(:), nopen(:), nall(:)
-      real(wp), allocatable :: s_tip(:), s_new(:), f(:), seen(:, :), arc(:), arc_new(:)
+      real(wp), allocatable :: s_tip(:), s_new(:), f(:), seen(:, :), arc(:), arc_new(:), face(:, :)
       type(iteration_record_t), allocatable :: records(:)
       integer :: pass, j, iterations, factorizations
       real(wp) :: t_fact, t_solve, t_search
@@ -68,7 +68,9 @@ contains
          call contact%project(model, u, error)
          if (allocated(error)) return
          f = fext
-         call add_uplift_forces(model, contact, uplifts, which, s_tip, f, contact%cfluidp)
+         call slave_face_vectors(model, contact, which, face, error)
+         if (allocated(error)) return
+         call add_uplift_forces(model, contact, uplifts, which, s_tip, f, contact%cfluidp, face)
          call solve_contact(sys, model, fixed, prescribed, f, u, contact, error, log)
          if (allocated(error)) return
          records = [records, sys%records]
