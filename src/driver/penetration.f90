@@ -45,7 +45,7 @@ contains
       integer :: pass, j, iterations, factorizations
       real(wp) :: t_fact, t_solve, t_search
       logical :: changed
-      character(len=200) :: buf
+      character(len=320) :: buf
 
       if (allocated(contact%cfluidp)) deallocate (contact%cfluidp)
       if (allocated(contact%water_entered)) deallocate (contact%water_entered)
@@ -135,7 +135,8 @@ contains
                ' (sum of CFLUIDP * CNAREA)'
             if (uplifts(j)%penetration) then
                write (buf, '(a,a,es12.5,a,i0,a,i0,a,i0,a)') trim(buf), '; water entered ', arc(j), &
-                  ' along the joint from the heel (', nopen(j), ' of ', nall(j), ' slave nodes open from the heel; contact '// &
+                  ' along the joint from the heel (', nopen(j), ' of ', nall(j), &
+                  ' slave nodes open from the heel; contact '// &
                   'solved ', pass, ' times)'
             end if
             call log%say(trim(buf))
