@@ -10,6 +10,13 @@ import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 DECKS = sorted(glob.glob(os.path.join(ROOT, "inputs", "*.inp")))
+# iterations per contact solve beyond the 8 of the paper's scenes, per deck, measured:
+# the two-wedge penetration deck's second pass (headwater in the back joint) takes 10, its
+# last 5 with the active set and the stick/slip states settled, the exact-stick Uzawa
+# updates bringing the largest tangential force change from 0.34 to 1e-10 of the largest
+# contact force (the water at the kink acting on its own sides moved them there; 8 + 7
+# iterations when it acted along one segment's normal)
+BOUND = {"dam_two_wedge_penetration.inp": 10}
 
 
 @pytest.mark.parametrize("deck", DECKS, ids=[os.path.basename(d) for d in DECKS])
@@ -23,7 +30,7 @@ def test_deck_runs(deck, tmp_path):
     # pressure penetration solves the contact once per pass and the log counts the
     # iterations of all passes: the bound holds per contact solve
     passes = max([int(m) for m in re.findall(r"contact solved (\d+) times", log)] or [1])
-    assert all(i <= 8 * passes for i in its), its
+    assert all(i <= BOUND.get(os.path.basename(deck), 8) * passes for i in its), its
     assert (tmp_path / f"{job}.pvd").exists() and (tmp_path / f"{job}.h5").exists()
 
 

@@ -112,19 +112,31 @@ def test_rock_block_without_cohesion(exe, tmp_path, tag):
     assert F == pytest.approx(fs, rel=0.01), (F, fs)
 
 
-@pytest.mark.xfail(strict=True, reason="the default probe at the mobilized-strength estimate: trials at "
-                   "F = 1.0756 and 1.0714, from the F = 1 state, fail by active-set cycles even cut back (numerical, not a "
-                   "mechanism: 1.0781 holds from the 1.5 bracket), so the search stops at 1.0692, -1.03 %")
-def test_rock_block_default_search(exe, tmp_path):
-    """The crack6 deck without its data line (the search's default first trial): the same
-    1 % as above.  Strict: when the search gets it right, remove the mark."""
+def test_rock_block_search_repeatable(exe, tmp_path):
+    """The crack6 deck's default search (the probes at the mobilized-strength estimate of
+    the F = 1 state) and the same deck with the first trial 1.5 given (the bracket by
+    doubling or halving, then bisection) give the same factor within the tolerance 1e-3,
+    both within 0.5 % of the limit equilibrium (the mesh's share: -0.2 %).  Near the limit
+    the joint's end node at the crack has no consistent open/closed state (closed, its
+    cohesion pulls it open; open, the block moves into it); the contact iteration holds it
+    closed (pin_cycle) instead of failing the trial by a cycle, which stopped the default
+    search at 1.0692 (-1.03 %)."""
     text = open(os.path.join(ROOT, "inputs", "rock_block_crack6.inp")).read()
-    assert "\n1.5, 100.\n" in text
-    text = text.replace("\n1.5, 100.\n", "\n").replace("INPUT=meshes/",
-                                                        "INPUT=" + os.path.join(ROOT, "inputs", "meshes") + "/")
-    (tmp_path / "d.inp").write_text(text)
-    r = subprocess.run([exe, "-q", "-o", str(tmp_path), str(tmp_path / "d.inp")], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    with h5py.File(tmp_path / "d.h5") as f:
-        F = float(f["steps/0003"].attrs["factor_of_safety"])
-    assert F == pytest.approx(limit_equilibrium(6.0, 20000.0)[0], rel=0.01), F
+    assert "*STRENGTH REDUCTION, INTERACTION=JOINT\n*END STEP" in text, "the deck uses the default search"
+    text = text.replace("INPUT=meshes/", "INPUT=" + os.path.join(ROOT, "inputs", "meshes") + "/")
+    factors = []
+    for tag, data in (("default", ""), ("first", "1.5, 100.\n")):
+        (tmp_path / tag).mkdir()
+        deck = tmp_path / tag / "d.inp"
+        deck.write_text(text.replace("*STRENGTH REDUCTION, INTERACTION=JOINT\n",
+                                     "*STRENGTH REDUCTION, INTERACTION=JOINT\n" + data))
+        r = subprocess.run([exe, "-q", "-o", str(tmp_path / tag), str(deck)], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        with h5py.File(tmp_path / tag / "d.h5") as f:
+            factors.append(float(f["steps/0003"].attrs["factor_of_safety"]))
+            assert f["steps/0003/strength_reduction"]["F"][1] == (1.5 if tag == "first" else
+                                                                    pytest.approx(factors[-1], rel=0.01))
+    for F in factors:
+        assert F == pytest.approx(limit_equilibrium(6.0, 20000.0)[0], rel=0.005), factors
+    # both end with F_ok within the tolerance below the same limit: within it of each other
+    assert abs(factors[0] - factors[1]) <= 1e-3 * min(factors), factors

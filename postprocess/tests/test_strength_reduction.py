@@ -371,3 +371,25 @@ def test_runaway_detected(exe, tmp_path):
     ok = srm["converged"] == 1
     # u_char is a node's |U - U_start|, the bound is on each component: sqrt(2)
     assert np.all(srm["u_char"][ok] <= 1e3 * np.sqrt(2.0) * base * (1 + 1e-12))
+
+
+@pytest.mark.parametrize("margin", [0.9, 1.1])
+def test_static_step_beyond_the_joint_strength(exe, tmp_path, margin):
+    """A plain frictional *STATIC step whose load needs more shear than the joint carries
+    (mu below H / W, the limit equilibrium of the dry dam, by 10 %) ends with one message
+    that names the sliding, exit 3: no solver, cut-back or support message alone.  10 %
+    above that mu the same step holds (the threshold is the joint's, not a numerical
+    accident).  W and H are the deck's: the dam's weight rho g A and the thrust
+    gw WATER^2 / 2."""
+    area = 0.5 * (DAM[1][0] - DAM[0][0] + DAM[2][0] - DAM[3][0]) * DAM[3][1]
+    mu_crit = (0.5 * GW * WATER ** 2) / (RHO * G * area)
+    deck = dam_deck(tmp_path / "dam.inp", mu=margin * mu_crit, srm="*STATIC")
+    r = subprocess.run([exe, "-q", "-o", str(tmp_path), str(deck)], capture_output=True, text=True)
+    if margin > 1:
+        assert r.returncode == 0, r.stderr
+        return
+    assert r.returncode == 3, r.stderr + r.stdout
+    errors = [line for line in r.stderr.splitlines() if line.startswith("error")]
+    assert len(errors) == 1, r.stderr
+    assert "no equilibrium" in errors[0] and "slide" in errors[0], errors
+    assert "Traceback" not in r.stderr and "NaN" not in r.stderr and "cut back" not in r.stderr

@@ -32,7 +32,7 @@ module vemcontact_contact_active_set
    use vemcontact_contact_spring, only: spring_t
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_tangential, only: friction_state_t, make_law
-   use vemcontact_contact_friction, only: tangent_stick, tangent_slip
+   use vemcontact_contact_friction, only: tangent_stick, tangent_slip, tangential_response_t
    implicit none
    private
 
@@ -138,6 +138,9 @@ module vemcontact_contact_active_set
       !> CFLUIDP: the uplift on each entry (vemcontact_contact_uplift), unallocated
       !> when no *UPLIFT is in force
       real(wp), allocatable :: cfluidp(:)
+      !> per pair: the length along the joint that pressure penetration filled from the
+      !> heel (-1: no penetration on the pair); unallocated when no *UPLIFT is in force
+      real(wp), allocatable :: water_entered(:)
       integer :: nexcluded = 0                 !< slave nodes dropped because they belong to the master
       integer(ip), allocatable :: inserted(:)  !< nodes inserted for each pair (SURFACE TO SURFACE)
       !> the number of nodes before the insertion: pair p's nodes follow those of the pairs before it
@@ -173,6 +176,8 @@ module vemcontact_contact_active_set
       procedure :: max_penetration
       procedure :: max_pressure
       procedure :: update_friction
+      procedure :: zero_normal_strength
+      procedure :: add_tension
       procedure :: augment_friction
       procedure :: commit_friction
       procedure :: has_exact_friction
@@ -681,13 +686,17 @@ contains
    !> Entries of `hold` that are active stay active whatever their gap; they are
    !> counted as changed when their gap says open, so that the caller does not stop
    !> on them (the driver holds nodes opened by the pairing update alone).
-   subroutine update_active(self, nchanged, hold)
+   subroutine update_active(self, nchanged, hold, pin)
       class(contact_state_t), intent(inout) :: self
       integer, intent(out) :: nchanged
       logical, intent(in), optional :: hold(:)
+      !> entries kept closed whatever their force, and not counted as changes
+      !> (solve_contact's pins: an entry between open and closed)
+      logical, intent(in), optional :: pin(:)
       logical, allocatable :: new(:)
       ! N = lambda - k g >= 0: g <= 0 for LINEAR pairs (lambda = 0)
       new = self%iseg > 0 .and. self%lambda - self%k*self%gap >= 0.0_wp
+      if (present(pin)) new = new .or. (pin .and. self%iseg > 0)
       nchanged = count(new .neqv. self%active)
       if (present(hold)) new = new .or. (hold .and. self%active .and. self%iseg > 0)
       self%active = new
@@ -792,8 +801,20 @@ contains
          nf(i) = self%normal_force(i)
       end do
       call self%fric%update(self%pair, sl, nf, self%active .and. self%iseg > 0, self%length*self%thick, nchanged, &
-                            closing_slips)
+                            closing_slips, 16.0_wp*epsilon(1.0_wp)*maxval(abs(u)))
    end subroutine update_friction
+
+   !> The shear force that entry i's law carries closed at zero normal force (the
+   !> cohesion c A of Mohr-Coulomb; 0 for Coulomb, frictionless or without friction).
+   pure real(wp) function zero_normal_strength(self, i) result(t)
+      class(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      type(tangential_response_t) :: r
+      t = 0.0_wp
+      if (.not. self%fric%on) return
+      r = self%fric%laws(self%pair(i))%law%return_map(huge(1.0_wp), 0.0_wp, self%length(i)*self%thick(i), .true.)
+      if (r%state == tangent_slip) t = abs(r%force)
+   end function zero_normal_strength
 
    !> Uzawa update of the exact-stick entries (friction_state_t%augment): the largest
    !> change of a tangential force beyond `noise`, relative to the largest contact
@@ -892,6 +913,21 @@ contains
                       self%fric%force(i)*matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i))))
       end do
    end subroutine forces
+
+   !> The tension that the springs of the entries `mask` carry (lambda - k g < 0),
+   !> added to the contact forces f as forces does the pressures: the force of an
+   !> entry held closed by solve_contact's pins, which the solve balances.
+   subroutine add_tension(self, mask, f)
+      class(contact_state_t), intent(in) :: self
+      logical, intent(in) :: mask(:)
+      real(wp), intent(inout) :: f(:)
+      integer :: i
+      do i = 1, self%n
+         if (.not. (mask(i) .and. self%active(i))) cycle
+         call scatter(f, nodes_of(self, i), -min(0.0_wp, self%lambda(i) - self%k(i)*self%gap(i))* &
+                      matmul(self%normal(:, i), relative_map(self%xi(i))))
+      end do
+   end subroutine add_tension
 
    !> The forces (k g(u) - lambda) A^T n of the active springs with the pairing frozen,
    !> g(u) = g0 + n.A u: the contact part of the matrix-vector product of the

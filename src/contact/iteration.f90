@@ -195,6 +195,8 @@ module vemcontact_contact_iteration
       logical :: settled = .false.        !< the last update changed no entry
       logical :: rebuilt = .false.        !< the last matrix needed a new pattern
       logical, allocatable :: history(:, :), held(:)
+      !> entries kept closed after a cycle between open and closed (pin_cycle)
+      logical, allocatable :: pinned(:)
       real(wp), allocatable :: gaps(:, :)
       integer(ip), allocatable :: iseg_start(:)
       !> right-hand side, K u, contact forces, residual, start of the solve
@@ -266,6 +268,8 @@ contains
          converged = has_converged(s, sys, model, fixed, u, contact, error)
          if (allocated(error)) return
          if (converged) then
+            call check_pins(s, contact, error, log)
+            if (allocated(error)) return
             call contact%commit_friction()
             call contact%set_balanced(model, s%ku - fext, fixed)
             call report_slid_off(s, model, contact, log)
@@ -297,6 +301,7 @@ contains
       s%kmax = sys%largest_elastic_diagonal()
       allocate (s%history(contact%n, 0:s%maxit), s%gaps(contact%n, 0:s%maxit))
       allocate (s%held(contact%n), source=.false.)
+      allocate (s%pinned(contact%n), source=.false.)
       if (allocated(sys%records)) deallocate (sys%records)
       allocate (sys%records(0))
       sys%iterations = 0
@@ -420,7 +425,7 @@ contains
       call contact%project(model, u, error)
       if (allocated(error)) return
       hold = hold_nodes(contact%active, gfrozen, contact%gap, s%held)
-      call contact%update_active(s%nchanged, hold)
+      call contact%update_active(s%nchanged, hold, s%pinned)
       s%held = hold .and. contact%active
       call contact%update_friction(u, s%nslip, .true.)
       s%settled = s%nchanged == 0
@@ -442,6 +447,7 @@ contains
       call sys%elastic_times(u, s%ku)
       s%fc = 0.0_wp
       call contact%forces(s%fc)
+      if (any(s%pinned)) call contact%add_tension(s%pinned, s%fc)
       s%r = fext - s%ku - s%fc
       where (fixed) s%r = 0.0_wp
       s%rel = residual_norm(s%r, u, merge(0.0_wp, fext, fixed), s%fc, s%kmax, closed_stiffness(contact))
@@ -521,9 +527,10 @@ contains
    end function flips_within
 
    !> Stop when the iterates return to the active set and gaps of an earlier
-   !> iteration (is_cycle).
+   !> iteration (is_cycle), unless pinning the entries that switched resolves it
+   !> (pin_cycle).
    subroutine check_cycle(s, u, contact, error)
-      type(iteration_state_t), intent(in) :: s
+      type(iteration_state_t), intent(inout) :: s
       real(wp), intent(in) :: u(:)
       type(contact_state_t), intent(in) :: contact
       type(error_t), allocatable, intent(out) :: error
@@ -532,11 +539,74 @@ contains
       if (s%nchanged == 0) return
       j = is_cycle(s%history, s%gaps, contact%active, s%gaps(:, s%it), s%it, s%rc_min, maxval(abs(u)))
       if (j < 0) return
+      if (pin_cycle(s, contact, j)) return
       write (buf, '(a,i0,a,i0)') 'error: contact iterations cycle: iteration ', s%it, &
          ' returns to the active set and gaps of iteration ', j
       call fatal_error(error, trim(buf)//' (the penalty may be too large for the mesh, or a '// &
                        'slave node sits at the end of a master surface)', err_solver)
    end subroutine check_cycle
+
+   !> A cycle from iteration j whose entries that switched between open and closed
+   !> all carry shear at zero normal force (cohesion): pin them closed for the rest of
+   !> the iteration and go on (true), unless some were pinned already (false: the
+   !> cycle stands).  Such an entry has no consistent state of its own: closed, its
+   !> cohesive shear c A pulls it open (a tension), open it carries nothing and the
+   !> bodies move into it (rock_block_crack6 near the limit: the end node of the joint
+   !> at the crack, open by 1e-12 m closed, overclosed by 4e-8 m open, every trial
+   !> within 1 % of the limit cycling).  The state between is the node at zero gap
+   !> and zero normal force with a shear below c A, where opening and closing meet;
+   !> held closed it reaches it up to the tension of its spring, which check_pins
+   !> bounds by the entry's cohesive strength and reports.
+   logical function pin_cycle(s, contact, j) result(pinned)
+      type(iteration_state_t), intent(inout) :: s
+      type(contact_state_t), intent(in) :: contact
+      integer, intent(in) :: j
+      logical, allocatable :: flip(:)
+      integer :: k, i
+      pinned = .false.
+      if (any(s%pinned)) return
+      allocate (flip(contact%n), source=.false.)
+      do k = j, s%it - 1
+         flip = flip .or. (s%history(:, k) .neqv. s%history(:, k + 1))
+      end do
+      if (.not. any(flip)) return
+      do i = 1, contact%n
+         if (.not. flip(i)) cycle
+         if (.not. (contact%zero_normal_strength(i) > 0.0_wp) .or. contact%iseg(i) <= 0) return
+      end do
+      s%pinned = flip
+      pinned = .true.
+   end function pin_cycle
+
+   !> At convergence: a pinned entry (pin_cycle) may carry a tension up to its shear
+   !> strength at zero normal force (the Mohr-Coulomb envelope reaches tension c/tan(phi)
+   !> there; c A is below it for phi < 45 deg and the order of it beyond); beyond that the
+   !> cycle was not between open and closed at zero force, and stands as the error.
+   !> The log names the pinned entries and their normal forces.
+   subroutine check_pins(s, contact, error, log)
+      type(iteration_state_t), intent(in) :: s
+      type(contact_state_t), intent(in) :: contact
+      type(error_t), allocatable, intent(out) :: error
+      type(logger_t), intent(inout), optional :: log
+      character(len=160) :: buf
+      real(wp) :: n
+      integer :: i
+      if (.not. any(s%pinned)) return
+      do i = 1, contact%n
+         if (.not. s%pinned(i)) cycle
+         n = contact%lambda(i) - contact%k(i)*contact%gap(i)
+         if (-n > contact%zero_normal_strength(i)) then
+            write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations cycle: slave node ', contact%node(i), &
+               ' between open and closed carries a tension ', -n, ' beyond its cohesive strength'
+            call fatal_error(error, trim(buf), err_solver)
+            return
+         end if
+         write (buf, '(a,i0,a,es11.4,a,es11.4,a)') '  slave node ', contact%node(i), &
+            ' held closed between open and closed: normal force ', n, &
+            ' (cohesive strength ', contact%zero_normal_strength(i), ')'
+         if (present(log)) call log%say(trim(buf))
+      end do
+   end subroutine check_pins
 
    !> The stiffest closed spring (0 when none is closed), for residual_norm.
    pure real(wp) function closed_stiffness(contact) result(kc)

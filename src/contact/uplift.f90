@@ -8,15 +8,23 @@
 !> from its master point and the master nodes (with the weights 1 - xi, xi) the other
 !> way.  The two faces so carry equal and opposite forces, and the reported CPRESS
 !> (the effective contact pressure) plus CFLUIDP (this pressure) is the total normal
-!> stress of the joint node by node.
+!> stress of the joint node by node.  On a NODE TO SURFACE pair the force of a slave
+!> node is the pressure on the halves of its own wet slave sides, each along its own
+!> normal (slave_face_vectors): at a kink of the joint the sum of the two sides'
+!> forces, not the tributary length along one master segment's normal, so that the
+!> water's resultant and its line of action on each face are right on a polyline joint
+!> (on a straight one the two are the same).
 module vemcontact_contact_uplift
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_model, only: model_t, uplift_t
+   use vemcontact_error, only: error_t
+   use vemcontact_model, only: model_t, uplift_t, pair_surface_to_surface
    use vemcontact_contact_active_set, only: contact_state_t
+   use vemcontact_contact_surfaces, only: slave_edges
    implicit none
    private
 
-   public :: joint_position, uplift_head, uplift_pressure, uplift_of_entries, crack_front, add_uplift_forces
+   public :: joint_position, uplift_head, uplift_pressure, uplift_of_entries, crack_front, add_uplift_forces, &
+             slave_face_vectors
 
 contains
 
@@ -83,14 +91,19 @@ contains
    !> contiguously from the heel (0 when the node nearest the heel is closed), with
    !> the number of those open nodes and of all the uplift's nodes.  A node is open
    !> when its contact is not active (Abaqus' criterion with zero critical pressure).
-   pure subroutine crack_front(model, contact, which, j, up, s_tip, nopen, nall)
+   pure subroutine crack_front(model, contact, which, j, up, s_tip, nopen, nall, arc)
       type(model_t), intent(in) :: model
       type(contact_state_t), intent(in) :: contact
       integer, intent(in) :: which(:), j
       type(uplift_t), intent(in) :: up
       real(wp), intent(out) :: s_tip
       integer, intent(out) :: nopen, nall
+      !> the crack's length along the joint: from the heel to the first open slave node,
+      !> then along the slave nodes in order to the crack tip (0 when none is open);
+      !> on a kinked joint longer than the tip's projection on the heel-toe line
+      real(wp), intent(out), optional :: arc
       real(wp), allocatable :: s(:)
+      real(wp) :: x_last(2), length
       logical, allocatable :: open(:), done(:)
       integer :: i, m, next
       nall = count(which == j)
@@ -102,6 +115,8 @@ contains
       done = which /= j
       s_tip = 0.0_wp
       nopen = 0
+      length = 0.0_wp
+      x_last = up%heel
       ! the uplift's nodes in order from the heel, until the first closed one
       do m = 1, nall
          next = minloc(s, mask=.not. done, dim=1)
@@ -109,14 +124,17 @@ contains
          if (.not. open(next)) exit
          nopen = nopen + 1
          s_tip = s(next)
+         length = length + norm2(model%x(:, contact%node(next)) - x_last)
+         x_last = model%x(:, contact%node(next))
       end do
+      if (present(arc)) arc = length
    end subroutine crack_front
 
    !> Add to f the uplift's forces on both faces and set each entry's pressure
    !> (cfluidp, 0 where no uplift acts) for the crack fronts s_tip(j) of the uplifts;
    !> the pairing (segment, xi, normal) is the contact state's current one.  An entry
    !> without a master segment (beyond the master's ends) carries none.
-   pure subroutine add_uplift_forces(model, contact, uplifts, which, s_tip, f, cfluidp)
+   pure subroutine add_uplift_forces(model, contact, uplifts, which, s_tip, f, cfluidp, face)
       type(model_t), intent(in) :: model
       type(contact_state_t), intent(in) :: contact
       type(uplift_t), intent(in) :: uplifts(:)
@@ -124,8 +142,11 @@ contains
       real(wp), intent(in) :: s_tip(:)
       real(wp), intent(inout) :: f(:)
       real(wp), intent(out) :: cfluidp(:)
+      !> per entry, the slave face's vector (slave_face_vectors); an entry whose vector is
+      !> zero, or all without it, take the tributary length along the entry's normal
+      real(wp), intent(in), optional :: face(:, :)
       integer(ip) :: nodes(3)
-      real(wp) :: force, w(3)
+      real(wp) :: force(2), w(3)
       integer :: i, k
       cfluidp = 0.0_wp
       do i = 1, contact%n
@@ -133,11 +154,57 @@ contains
          cfluidp(i) = uplift_pressure(uplifts(which(i)), model%x(:, contact%node(i)), s_tip(which(i)))
          if (contact%iseg(i) == 0) cycle
          nodes = [contact%node(i), contact%pairs(contact%pair(i))%seg(:, contact%iseg(i))]
-         force = cfluidp(i)*contact%length(i)*contact%thick(i)
+         force = cfluidp(i)*contact%length(i)*contact%thick(i)*contact%normal(:, i)
+         if (present(face)) then
+            if (any(face(:, i) /= 0.0_wp)) force = cfluidp(i)*contact%thick(i)*face(:, i)
+         end if
          w = [1.0_wp, -(1.0_wp - contact%xi(i)), -contact%xi(i)]
          do k = 1, 3
-            f(2*nodes(k) - 1:2*nodes(k)) = f(2*nodes(k) - 1:2*nodes(k)) + w(k)*force*contact%normal(:, i)
+            f(2*nodes(k) - 1:2*nodes(k)) = f(2*nodes(k) - 1:2*nodes(k)) + w(k)*force
          end do
       end do
    end subroutine add_uplift_forces
+
+   !> Per entry of a NODE TO SURFACE pair with uplift (which > 0): the sum over the
+   !> slave sides at its node whose both ends carry uplift of half the side's length
+   !> times its unit normal, pointing out of the master (the side of the slave the
+   !> water pushes); zero elsewhere (add_uplift_forces then takes the tributary length
+   !> along the entry's normal: SURFACE TO SURFACE pairs, whose faces the insertion of
+   !> nodes splits).  On a straight joint it is the tributary length times the normal.
+   pure subroutine slave_face_vectors(model, contact, which, v, error)
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(in) :: contact
+      integer, intent(in) :: which(:)
+      real(wp), allocatable, intent(out) :: v(:, :)
+      type(error_t), allocatable, intent(out) :: error
+      integer(ip), allocatable :: edge(:, :), edge_elem(:)
+      integer, allocatable :: edge_side(:), entry(:)
+      real(wp) :: t(2), h(2)
+      integer :: p, i, k, a, b
+      allocate (v(2, contact%n), source=0.0_wp)
+      allocate (entry(model%nnode))
+      do p = 1, size(model%pairs)
+         if (model%pairs(p)%formulation == pair_surface_to_surface) cycle
+         if (.not. any(which > 0 .and. contact%pair == p)) cycle
+         call slave_edges(model, model%pairs(p), edge, edge_elem, edge_side, error)
+         if (allocated(error)) return
+         entry = 0
+         do i = 1, contact%n
+            if (contact%pair(i) == p .and. which(i) > 0) entry(contact%node(i)) = i
+         end do
+         do k = 1, size(edge, 2)
+            a = entry(edge(1, k))
+            b = entry(edge(2, k))
+            if (a == 0 .or. b == 0) cycle
+            t = model%x(:, edge(2, k)) - model%x(:, edge(1, k))
+            h = 0.5_wp*[t(2), -t(1)]
+            v(:, a) = v(:, a) + h
+            v(:, b) = v(:, b) + h
+         end do
+      end do
+      ! the sides' orientation is their elements': turn each vector out of the master
+      do i = 1, contact%n
+         if (dot_product(v(:, i), contact%normal(:, i)) < 0.0_wp) v(:, i) = -v(:, i)
+      end do
+   end subroutine slave_face_vectors
 end module vemcontact_contact_uplift

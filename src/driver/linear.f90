@@ -421,7 +421,8 @@ contains
       end if
       f = fext
       call contact%add_rhs(f)
-      call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part), self%cs)
+      call check_supports(model, self%part, self%nparts, fixed, error, contact%springs(model, self%part), &
+                          self%cs, contact%fric%on)
       if (allocated(error)) return
       call self%constrain(self%kb, fixed, prescribed, f, .true., error)
    end subroutine contact_matrix

@@ -13,7 +13,7 @@ module vemcontact_driver_penetration
    use vemcontact_model, only: model_t, uplift_t
    use vemcontact_contact_iteration, only: contact_system_t, iteration_record_t, solve_contact
    use vemcontact_contact_active_set, only: contact_state_t
-   use vemcontact_contact_uplift, only: uplift_of_entries, crack_front, add_uplift_forces
+   use vemcontact_contact_uplift, only: uplift_of_entries, crack_front, add_uplift_forces, slave_face_vectors
    use vemcontact_log, only: logger_t
    implicit none
    private
@@ -40,20 +40,22 @@ contains
       type(error_t), allocatable, intent(out) :: error
       type(logger_t), intent(inout), optional :: log
       integer, allocatable :: which(:), nopen(:), nall(:)
-      real(wp), allocatable :: s_tip(:), s_new(:), f(:), seen(:, :)
+      real(wp), allocatable :: s_tip(:), s_new(:), f(:), seen(:, :), arc(:), arc_new(:), face(:, :)
       type(iteration_record_t), allocatable :: records(:)
       integer :: pass, j, iterations, factorizations
       real(wp) :: t_fact, t_solve, t_search
       logical :: changed
-      character(len=200) :: buf
+      character(len=320) :: buf
 
       if (allocated(contact%cfluidp)) deallocate (contact%cfluidp)
+      if (allocated(contact%water_entered)) deallocate (contact%water_entered)
       if (size(uplifts) == 0) then
          call solve_contact(sys, model, fixed, prescribed, fext, u, contact, error, log)
          return
       end if
       which = uplift_of_entries(model, contact, uplifts)
-      allocate (s_tip(size(uplifts)), s_new(size(uplifts)), source=0.0_wp)
+      allocate (s_tip(size(uplifts)), s_new(size(uplifts)), arc(size(uplifts)), arc_new(size(uplifts)), &
+                source=0.0_wp)
       allocate (nopen(size(uplifts)), nall(size(uplifts)), source=0)
       allocate (contact%cfluidp(contact%n), f(size(fext)), records(0), seen(size(uplifts), 0))
       iterations = 0
@@ -66,7 +68,9 @@ contains
          call contact%project(model, u, error)
          if (allocated(error)) return
          f = fext
-         call add_uplift_forces(model, contact, uplifts, which, s_tip, f, contact%cfluidp)
+         call slave_face_vectors(model, contact, which, face, error)
+         if (allocated(error)) return
+         call add_uplift_forces(model, contact, uplifts, which, s_tip, f, contact%cfluidp, face)
          call solve_contact(sys, model, fixed, prescribed, f, u, contact, error, log)
          if (allocated(error)) return
          records = [records, sys%records]
@@ -78,9 +82,10 @@ contains
          changed = .false.
          do j = 1, size(uplifts)
             if (.not. uplifts(j)%penetration) cycle
-            call crack_front(model, contact, which, j, uplifts(j), s_new(j), nopen(j), nall(j))
+            call crack_front(model, contact, which, j, uplifts(j), s_new(j), nopen(j), nall(j), arc_new(j))
             if (abs(s_new(j) - s_tip(j)) > 0.0_wp) changed = .true.
          end do
+         arc = arc_new
          if (.not. changed) exit
          ! a crack that returns to an earlier length would alternate for ever
          seen = reshape([seen, s_tip], [size(uplifts), pass])
@@ -94,7 +99,7 @@ contains
          do j = 1, size(uplifts)
             if (.not. uplifts(j)%penetration) cycle
             write (buf, '(2x,a,i0,a,es12.5,a,i0,a,i0,a)') 'pressure penetration, pass ', pass, &
-               ': water entered ', entered(j), ' from the heel (', nopen(j), ' of ', nall(j), &
+               ': water entered ', arc(j), ' along the joint from the heel (', nopen(j), ' of ', nall(j), &
                ' slave nodes open from the heel) on interaction '
             if (present(log)) call log%say(trim(buf)//' '//model%interactions(uplifts(j)%interaction)%name// &
                                            '; solving again with the headwater in the crack')
@@ -106,6 +111,11 @@ contains
          call fatal_error(error, trim(buf), err_solver)
          return
       end if
+      allocate (contact%water_entered(size(model%pairs)), source=-1.0_wp)
+      do j = 1, size(uplifts)
+         if (.not. uplifts(j)%penetration) cycle
+         where (model%pairs%interaction == uplifts(j)%interaction) contact%water_entered = arc(j)
+      end do
       sys%records = records
       sys%iterations = iterations
       sys%factorizations = factorizations
@@ -114,12 +124,6 @@ contains
       sys%t_search = t_search
       if (present(log)) call summary()
    contains
-      !> Length of the crack of uplift j that the water filled.
-      pure real(wp) function entered(j)
-         integer, intent(in) :: j
-         entered = s_tip(j)*norm2(uplifts(j)%toe - uplifts(j)%heel)
-      end function entered
-
       !> Per uplift: the uplift force (sum CFLUIDP * CNAREA) and, with penetration,
       !> how far the water entered.
       subroutine summary()
@@ -130,8 +134,9 @@ contains
                model%interactions(uplifts(j)%interaction)%name//': force ', force, &
                ' (sum of CFLUIDP * CNAREA)'
             if (uplifts(j)%penetration) then
-               write (buf, '(a,a,es12.5,a,i0,a,i0,a,i0,a)') trim(buf), '; water entered ', entered(j), &
-                  ' from the heel (', nopen(j), ' of ', nall(j), ' slave nodes open from the heel; contact '// &
+               write (buf, '(a,a,es12.5,a,i0,a,i0,a,i0,a)') trim(buf), '; water entered ', arc(j), &
+                  ' along the joint from the heel (', nopen(j), ' of ', nall(j), &
+                  ' slave nodes open from the heel; contact '// &
                   'solved ', pass, ' times)'
             end if
             call log%say(trim(buf))

@@ -780,7 +780,7 @@ contains
       character(len=160) :: buf
       character(len=:), allocatable :: name
       integer :: ip_
-      real(wp), allocatable :: fluid(:)
+      real(wp), allocatable :: fluid(:), wet
       associate (tab => rs%res%tab, u_out => rs%res%u_out)
          tab = rs%contact%table(model, u_out)
          if (sel%contact() .and. opts%write_vtu) then
@@ -794,6 +794,11 @@ contains
             ! CFLUIDP with *UPLIFT (an unallocated actual argument is absent)
             if (allocated(fluid)) deallocate (fluid)
             if (allocated(tab%cfluidp)) fluid = pack(tab%cfluidp, tab%pair == ip_)
+            ! the length the water entered, on the pairs of a pressure penetration
+            if (allocated(wet)) deallocate (wet)
+            if (allocated(rs%contact%water_entered)) then
+               if (rs%contact%water_entered(ip_) >= 0.0_wp) wet = rs%contact%water_entered(ip_)
+            end if
             if (frame == 0) then
                write (buf, '(a,i0,a)') '_contact_pair', ip_, '_'
                call write_contact_csv(opts%out_dir//'/'//opts%job//trim(buf)//frame_suffix(istep, 0)//'.csv', &
@@ -806,7 +811,8 @@ contains
                                      pack(tab%cslip, tab%pair == ip_), pack(tab%cnarea, tab%pair == ip_), &
                                      pack(tab%status, tab%pair == ip_), error, sel, &
                                      cshear=pack(tab%cshear, tab%pair == ip_), cfluidp=fluid, &
-                                     strength=strength_in_force(model, rs, istep, ip_))
+                                     strength=strength_in_force(model, rs, istep, ip_), &
+                                     water_entered=wet)
             if (allocated(error)) return
          end do
       end associate

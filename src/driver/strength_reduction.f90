@@ -251,6 +251,8 @@ contains
       character(len=64) :: why
       if (index(msg, 'NaN') > 0 .or. index(msg, 'singular') > 0 .or. index(msg, 'positive') > 0) then
          why = 'singular matrix (a mechanism)'
+      else if (index(msg, 'bodies slide') > 0) then
+         why = 'a body slides on its joints (a mechanism)'
       else if (index(msg, 'cycle') > 0) then
          why = reason_cycle
       else if (iters >= maxit) then

@@ -89,14 +89,19 @@ contains
    !> dependent dofs (held in `fixed`, since they are eliminated) are no supports; each
    !> equation u_d = sum a_j u_j is a row coupling the parts of its dofs instead, so a
    !> part held only through another part's equations is held, and a part whose
-   !> dependent dofs hang on a floating part floats with it.
-   subroutine check_supports(model, part, nparts, fixed, error, springs, cs)
+   !> dependent dofs hang on a floating part floats with it.  With `sliding` (the
+   !> springs are those of a frictional contact iteration, where a slipping entry
+   !> holds only along n), a part that its joints touch and that floats slides on
+   !> them: every entry that could hold it along the joint slips at its strength, so
+   !> the loads need more shear than the joints carry and no equilibrium exists.
+   subroutine check_supports(model, part, nparts, fixed, error, springs, cs, sliding)
       type(model_t), intent(in) :: model
       integer(ip), intent(in) :: part(:), nparts
       logical, intent(in) :: fixed(:)
       type(error_t), allocatable, intent(out) :: error
       type(spring_t), intent(in), optional :: springs(:)
       type(constraint_set_t), intent(in), optional :: cs
+      logical, intent(in), optional :: sliding
       real(wp), allocatable :: lo(:, :), hi(:, :), ctc(:, :), ev(:), work(:), c(:, :), sc(:)
       integer(ip), allocatable :: nelem(:), first_elem(:)
       real(wp) :: r(6), v(3), share
@@ -178,6 +183,21 @@ contains
                write (buf, '(a,2(g0.6,a))') 'it can rotate freely about the point (', &
                   c(1, p) - v(2)/v(3)*sc(p), ', ', c(2, p) + v(1)/v(3)*sc(p), ')'
                motion = trim(buf)
+            end if
+            if (present(sliding)) then
+               if (sliding .and. touched(p)) then
+                  write (buf, '(a,i0,a,i0,a,i0,a,i0)') 'error: no equilibrium: the bodies slide on their '// &
+                     'frictional joints: part ', p, ' of ', nparts, ' (', nelem(p), &
+                     ' elements, among them element ', model%elem_id(first_elem(p))
+                  call append_message(error, trim(buf)//' defined at '// &
+                                      location_string(model, model%elem_loc(first_elem(p)))//'): '//motion// &
+                                      ' with every node of its joints that could hold it slipping at the '// &
+                                      'strength c A + mu N'//new_line('a')//'  = help: the joints cannot '// &
+                                      'carry the shear of the loads; raise their friction or cohesion, or '// &
+                                      'lower the loads (*STRENGTH REDUCTION gives the factor of safety of '// &
+                                      'a joint that holds)', err_model)
+                  cycle
+               end if
             end if
             write (buf, '(a,i0,a,i0,a,i0,a,i0)') 'error: the model is not held: part ', p, ' of ', nparts, &
                ' (', nelem(p), ' elements, among them element ', model%elem_id(first_elem(p))

@@ -277,9 +277,10 @@ contains
    !> Write /steps/NNNN/contact/pair_K (the step group must exist): slave node ids,
    !> undeformed coordinates, COPEN, CPRESS, CSLIP (with `sel`: those selected), CSHEAR
    !> (with CPRESS, when given), CNAREA and STATUS (0 open, 1 closed, 2 slid off, 3 stick,
-   !> 4 slip), with *UPLIFT CFLUIDP beside CPRESS.
+   !> 4 slip), with *UPLIFT CFLUIDP beside CPRESS and, with pressure penetration, the
+   !> attribute water_entered.
    subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel, &
-                               cshear, cfluidp, strength)
+                               cshear, cfluidp, strength, water_entered)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
@@ -293,6 +294,9 @@ contains
       real(wp), intent(in), optional :: cfluidp(:)
       !> the friction coefficient and cohesion in force (attributes friction_coefficient, cohesion)
       real(wp), intent(in), optional :: strength(2)
+      !> pressure penetration: the length along the joint the water filled (attribute
+      !> water_entered)
+      real(wp), intent(in), optional :: water_entered
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
@@ -329,6 +333,9 @@ contains
       if (present(strength)) then
          if (.not. allocated(error)) call put_real_attribute(self, grp, 'friction_coefficient', strength(1), error)
          if (.not. allocated(error)) call put_real_attribute(self, grp, 'cohesion', strength(2), error)
+      end if
+      if (present(water_entered)) then
+         if (.not. allocated(error)) call put_real_attribute(self, grp, 'water_entered', water_entered, error)
       end if
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return
