@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from vctools.plot.results import ResultError
+from vctools.plot.results import ResultError, h5_path
 
 __all__ = ["run", "open", "find_executable", "Result", "Step", "Mesh", "Table", "RunError", "ResultError",
            "boundary_order", "ELEMENT_TYPES"]
@@ -318,13 +318,7 @@ class Result:
     def __init__(self, path: str):
         import h5py
 
-        if os.path.isdir(path):
-            h5s = sorted(f for f in os.listdir(path) if f.endswith(".h5"))
-            if len(h5s) != 1:
-                raise ResultError(f"{path}: expected one JOB.h5 in the folder, found {len(h5s)}: give the file")
-            path = os.path.join(path, h5s[0])
-        if not os.path.isfile(path):
-            raise ResultError(f"{path}: no such file")
+        path = h5_path(path)
         self.path = os.path.abspath(path)
         self.job = os.path.splitext(os.path.basename(path))[0]
         self.folder = os.path.dirname(self.path)

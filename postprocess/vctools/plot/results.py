@@ -28,6 +28,18 @@ class PolyResult:
     path: str
 
 
+def h5_path(path: str) -> str:
+    """The JOB.h5 that `path` names: the file itself, or the one .h5 file of a run folder."""
+    if os.path.isdir(path):
+        h5s = sorted(f for f in os.listdir(path) if f.endswith(".h5"))
+        if len(h5s) != 1:
+            raise ResultError(f"{path}: expected one JOB.h5 in the folder, found {len(h5s)}: give the file")
+        path = os.path.join(path, h5s[0])
+    if not os.path.isfile(path):
+        raise ResultError(f"{path}: no such file")
+    return path
+
+
 def job_of(path: str) -> str | None:
     """The job of a vemcontact .pvd (JOB.pvd) or .vtu (JOB_NNNN.vtu, JOB_contact_NNNN.vtu)."""
     base = os.path.basename(path)

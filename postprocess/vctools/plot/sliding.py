@@ -19,23 +19,12 @@ import os
 
 import numpy as np
 
-from vctools.plot.results import ResultError
+from vctools.plot.results import ResultError, h5_path
 from vctools.plot.contour import unit_factors
 
 #: STATUS codes of /steps/NNNN/contact/pair_K/STATUS (docs/output-format.md)
 STATUS_NAMES = {0: "open", 1: "closed", 2: "slid off", 3: "stick", 4: "slip"}
 STATUS_COLORS = {0: "#7f7f7f", 1: "#1f77b4", 2: "#8c564b", 3: "#2ca02c", 4: "#d62728"}
-
-
-def _h5path(path: str) -> str:
-    if os.path.isdir(path):
-        h5s = sorted(f for f in os.listdir(path) if f.endswith(".h5"))
-        if len(h5s) != 1:
-            raise ResultError(f"{path}: expected one JOB.h5 in the folder, found {len(h5s)}: give the file")
-        path = os.path.join(path, h5s[0])
-    if not os.path.isfile(path):
-        raise ResultError(f"{path}: no such file")
-    return path
 
 
 def _step_key(f, path: str, step: int, need: str | None = None) -> str:
@@ -76,7 +65,7 @@ def srm_data(path: str, step: int = 0) -> dict:
     iterations, and factor_of_safety, tolerance, F_lower, F_upper, step (1-based)."""
     import h5py
 
-    path = _h5path(path)
+    path = h5_path(path)
     with h5py.File(path, "r") as f:
         key = _step_key(f, path, step, "strength_reduction")
         g = f["steps"][key]
@@ -162,7 +151,7 @@ def joint_data(path: str, step: int = 0, pair: int = 1, mu: float | None = None,
     and mu, cohesion, step, pair."""
     import h5py
 
-    path = _h5path(path)
+    path = h5_path(path)
     with h5py.File(path, "r") as f:
         key = _step_key(f, path, step)
         g = f["steps"][key]
