@@ -105,8 +105,17 @@ contains
             write (buf, '(2x,a,i0,a,es12.5,a,i0,a,i0,a)') 'pressure penetration, pass ', pass, &
                ': water entered ', arc(j), ' along the joint from the heel (', nopen(j), ' of ', nall(j), &
                ' slave nodes open from the heel) on interaction '
-            if (present(log)) call log%say(trim(buf)//' '//model%interactions(uplifts(j)%interaction)%name// &
-                                           '; solving again with the headwater in the crack')
+            if (uplifts(j)%pair > 0) write (buf, '(2x,a,i0,a,es12.5,a,i0,a,i0,a,i0)') &
+               'pressure penetration, pass ', pass, ': fluid entered ', arc(j), &
+               ' along the joint from the exposed node (', nopen(j), ' of ', nall(j), &
+               ' slave nodes wetted) on contact pair ', uplifts(j)%pair
+            if (.not. present(log)) cycle
+            if (uplifts(j)%pair > 0) then
+               call log%say(trim(buf)//'; solving again with the fluid in the joint')
+            else
+               call log%say(trim(buf)//' '//model%interactions(uplifts(j)%interaction)%name// &
+                            '; solving again with the headwater in the crack')
+            end if
          end do
       end do
       if (pass > max_passes) then
