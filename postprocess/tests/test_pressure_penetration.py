@@ -84,11 +84,15 @@ def joint_deck(path, pp=None, *, extra_model=None):
     return path
 
 
-def pp_text(slave="HEEL_S", master="HEEL_M", p=P_FLUID, critical=None):
+def pp_text(slave="HEEL_S", master="HEEL_M", p=P_FLUID, critical=None, field4=False):
+    """The keyword; the critical pressure as the parameter or (field4) as Abaqus' fourth field."""
     head = "*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT"
-    if critical is not None:
+    tail = ""
+    if critical is not None and field4:
+        tail = f", {float(critical)!r}"
+    elif critical is not None:
         head += f", CRITICAL PRESSURE={float(critical)!r}"
-    return f"{head}\n{slave}, {master}, {float(p)!r}"
+    return f"{head}\n{slave}, {master}, {float(p)!r}{tail}"
 
 
 def run(exe, deck, out):
@@ -174,14 +178,16 @@ def test_exposed_at_closed_end(exe, tmp_path):
     assert entered == 0.0
 
 
-def test_critical_pressure_lets_fluid_further(exe, tmp_path):
+@pytest.mark.parametrize("field4", [False, True])
+def test_critical_pressure_lets_fluid_further(exe, tmp_path, field4):
     """(c) p_c = 1.5 times the contact pressure of the first closed node of (a): the
     fluid enters further; each wetted node's contact pressure is at or below p_c, the
-    first dry one's above it, and the statics hold."""
+    first dry one's above it, and the statics hold.  p_c as CRITICAL PRESSURE= and as
+    the data line's fourth field (Abaqus' place for it)."""
     d0, _ = joint(run(exe, joint_deck(tmp_path / "wet.inp", pp_text()), tmp_path))
     k0 = wetted_count(d0["CFLUIDP"])
     pc = 1.5 * d0["CPRESS"][k0]
-    d, _ = joint(run(exe, joint_deck(tmp_path / "crit.inp", pp_text(critical=pc)), tmp_path))
+    d, _ = joint(run(exe, joint_deck(tmp_path / "crit.inp", pp_text(critical=pc, field4=field4)), tmp_path))
     k = wetted_count(d["CFLUIDP"])
     assert k > k0
     assert np.all(d["CPRESS"][:k] <= pc) and d["CPRESS"][k] > pc
@@ -195,8 +201,16 @@ def test_critical_pressure_lets_fluid_further(exe, tmp_path):
      "no *CONTACT PAIR has the slave surface NOSUCH", None),
     ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT\nHEEL_S, HEEL_M",
      "missing fields on the *PRESSURE PENETRATION data line", None),
-    ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT\nHEEL_S, HEEL_M, 1., 2.",
-     "hydrostatic form", None),
+    ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT\nHEEL_S, HEEL_M, 1., 2., 3.",
+     "too many fields on the *PRESSURE PENETRATION data line", None),
+    ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT, CRITICAL PRESSURE=1\nHEEL_S, HEEL_M, 1., 2.",
+     "the critical contact pressure is given twice", None),
+    ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT\nHEEL_S, HEEL_M, 1., -2.",
+     "critical contact pressure -2. must be", None),
+    ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT\nHEEL_S, HEEL_M, 1.\nHEEL_S, HEEL_M, 2.",
+     "more than one *PRESSURE PENETRATION data line", None),
+    ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT\nBOTTOM, HEEL_M, 1.",
+     "the exposed slave node set BOTTOM has 28 nodes", None),
     ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT, AMPLITUDE=A\nHEEL_S, HEEL_M, 1.",
      "AMPLITUDE= is not supported", None),
     ("*PRESSURE PENETRATION, MASTER=BASETOP, SLAVE=BLOCKBOT, CRITICAL PRESSURE=-1\nHEEL_S, HEEL_M, 1.",
@@ -207,11 +221,13 @@ def test_critical_pressure_lets_fluid_further(exe, tmp_path):
      "the exposed master node 1 is not a node of the contact pair's master surface", None),
 ])
 def test_input_errors(exe, tmp_path, text, message, extra):
-    """Bad *PRESSURE PENETRATION input: exit 1, one message naming the keyword's file:line."""
+    """Bad *PRESSURE PENETRATION input: exit 1, one message naming file:line of the
+    keyword or of its offending data line."""
     deck = joint_deck(tmp_path / "bad.inp", text, extra_model=extra)
     line = deck.read_text().splitlines().index(text.splitlines()[0]) + 1
     r = subprocess.run([exe, "-q", "-o", str(tmp_path), str(deck)], capture_output=True, text=True)
     assert r.returncode == 1, r.stderr
     assert message in r.stderr
     assert "Traceback" not in r.stderr and "NaN" not in r.stderr
-    assert any(f"bad.inp:{n}" in r.stderr for n in (line, line + 1)), r.stderr
+    # the keyword line or the offending data line
+    assert any(f"bad.inp:{n}:" in r.stderr for n in range(line, line + len(text.splitlines()))), r.stderr

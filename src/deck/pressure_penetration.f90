@@ -5,13 +5,15 @@
 !>   *PRESSURE PENETRATION, MASTER=master surface, SLAVE=slave surface
 !>        [, CRITICAL PRESSURE=p_c] [, PENETRATION TIME=t]
 !>   slave node (or one-node set) exposed, master node (or one-node set) exposed, fluid pressure
+!>        [, critical contact pressure p_c]
 !>
+!> The data line is Abaqus' (its fourth field the critical contact pressure);
+!> CRITICAL PRESSURE= is vemcontact's spelling of the same value, one or the other.
 !> It becomes an uplift_t of the pair (uplift_t%pair > 0) that the pressure-penetration
 !> loop of *UPLIFT, PENETRATION drives (vemcontact_driver_penetration) with Abaqus'
 !> law: the pressure is uniform on the part reached from the exposed node through open
 !> nodes and zero beyond.  A static step applies it at once, so PENETRATION TIME is
-!> accepted and has no effect; AMPLITUDE and the hydrostatic form (a fourth field) are
-!> refused.
+!> accepted and has no effect; AMPLITUDE and further data lines are refused.
 module vemcontact_deck_pressure_penetration
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, uplift_t
@@ -28,7 +30,10 @@ module vemcontact_deck_pressure_penetration
    public :: read_pressure_penetration
 
    character(len=*), parameter :: data_help = 'the data line is: slave node (or node set) exposed to the '// &
-                                              'fluid, master node (or node set) exposed, fluid pressure'
+                                              'fluid, master node (or node set) exposed, fluid pressure '// &
+                                              '[, critical contact pressure]'
+   character(len=*), parameter :: critical_help = 'a node is open to the fluid while its contact pressure '// &
+                                                  'is at or below it (default 0: only where contact is lost)'
 
 contains
 
@@ -39,7 +44,7 @@ contains
       type(keyword_line_t), intent(in) :: kw
       type(uplift_t) :: up
       character(len=:), allocatable :: slave, master, val
-      logical :: found, ok
+      logical :: found, found_pc, ok
       integer :: k, nline, stat
       up%loc = here(p)
       if (has_param(kw, 'AMPLITUDE')) then
@@ -66,12 +71,11 @@ contains
          if (model%interactions(k)%name == p%pair_refs(up%pair)%interaction) up%interaction = k
       end do
       up%critical_pressure = 0.0_wp
-      call get_param(kw, 'CRITICALPRESSURE', val, found)
-      if (found) then
+      call get_param(kw, 'CRITICALPRESSURE', val, found_pc)
+      if (found_pc) then
          call parse_real(squeeze(val), up%critical_pressure, stat)
          if (stat /= num_ok .or. .not. up%critical_pressure >= 0.0_wp) then
-            call err_here(p, 'CRITICAL PRESSURE = '//val//' must be a number at or above 0', &
-                          'a node is open to the fluid while its contact pressure is at or below it')
+            call err_here(p, 'CRITICAL PRESSURE = '//val//' must be a number at or above 0', critical_help)
             call skip_data(p)
             return
          end if
@@ -85,15 +89,13 @@ contains
          call split_fields(p%src%text(1:p%src%length), p%f)
          if (nline > 1) then
             call err_here(p, 'more than one *PRESSURE PENETRATION data line', &
-                          'one exposed end per keyword: give another *PRESSURE PENETRATION for another pair')
+                          'vemcontact takes one exposed end per contact pair (a later *PRESSURE PENETRATION '// &
+                          'of the same pair replaces the earlier one)')
             cycle
          end if
-         if (p%f%n > 3) then
-            if (len_trim(field(p, 4)) > 0) then
-               call refuse_here(p, 'the hydrostatic form of *PRESSURE PENETRATION (a fourth field) '// &
-                                'is not supported', data_help//'; for water with a free surface see *UPLIFT')
-               cycle
-            end if
+         if (p%f%n > 4) then
+            call err_here(p, 'too many fields on the *PRESSURE PENETRATION data line', data_help)
+            cycle
          end if
          if (p%f%n < 3) then
             call err_here(p, 'missing fields on the *PRESSURE PENETRATION data line', data_help)
@@ -103,6 +105,22 @@ contains
          if (ok) call one_node(2, 'master', up%exposed_master, ok)
          if (ok) call get_real(p, 3, 'fluid pressure', up%fluid_pressure, ok, required=.true.)
          if (.not. ok) cycle
+         if (p%f%n == 4) then
+            if (len_trim(field(p, 4)) > 0) then
+               if (found_pc) then
+                  call err_here(p, 'the critical contact pressure is given twice (CRITICAL PRESSURE= and '// &
+                                'the fourth field)', 'give it in one place')
+                  cycle
+               end if
+               call get_real(p, 4, 'critical contact pressure', up%critical_pressure, ok, required=.true.)
+               if (.not. ok) cycle
+               if (.not. up%critical_pressure >= 0.0_wp) then
+                  call err_here(p, 'critical contact pressure '//field(p, 4)//' must be a number at or above 0', &
+                                critical_help)
+                  cycle
+               end if
+            end if
+         end if
          up%heel = model%x(:, up%exposed_slave)
          up%toe = up%heel
          call push(p%cur%uplift, up)
