@@ -34,7 +34,8 @@ X_N = 3.0
 P_FLUID = 2.5e4    # 0.1 N / B: the joint opens part of the way only
 
 
-def joint_deck(path, pp=None, *, extra_model=None, pair="NODE TO SURFACE, SMALL SLIDING", etype="CPE4"):
+def joint_deck(path, pp=None, *, extra_model=None, pair="NODE TO SURFACE, SMALL SLIDING", etype="CPE4",
+               after=None):
     """The deck of the rocking block; `pp` = the *PRESSURE PENETRATION text or None."""
     ny, hb = 4, 2.0
     nodes, elems = [], []
@@ -80,6 +81,8 @@ def joint_deck(path, pp=None, *, extra_model=None, pair="NODE TO SURFACE, SMALL 
     if pp is not None:
         L += [pp]
     L += ["*END STEP"]
+    if after is not None:
+        L += [after]
     path.write_text("\n".join(L) + "\n")
     return path
 
@@ -101,10 +104,10 @@ def run(exe, deck, out):
     return out / (os.path.basename(str(deck))[:-4] + ".h5")
 
 
-def joint(h5):
+def joint(h5, step="0001"):
     """The pair's slave nodes in order of x, and the pair's water_entered attribute."""
     with h5py.File(h5) as f:
-        g = f["steps/0001/contact/pair_1"]
+        g = f[f"steps/{step}/contact/pair_1"]
         d = {k: g[k][:] for k in g}
         entered = g.attrs.get("water_entered", None)
     x = d["coordinates"]
@@ -197,6 +200,25 @@ def test_critical_pressure_lets_fluid_further(exe, tmp_path, field4):
     np.testing.assert_array_equal(d["CFLUIDP"][:k], P_FLUID)
     np.testing.assert_array_equal(d["CFLUIDP"][k:], 0.0)
     check_statics(d)
+
+
+def test_later_steps(exe, tmp_path):
+    """The penetration holds in a later step that does not repeat it (the same state),
+    and a later *PRESSURE PENETRATION of the same pair replaces it: p = 0 leaves the
+    dry state."""
+    dry, _ = joint(run(exe, joint_deck(tmp_path / "dry.inp"), tmp_path))
+    nothing = "*STEP\n*STATIC\n*END STEP"
+    zero = "*STEP\n*STATIC\n" + pp_text(p=0.0) + "\n*END STEP"
+    h5 = run(exe, joint_deck(tmp_path / "steps.inp", pp_text(), after=nothing + "\n" + zero), tmp_path)
+    d1, e1 = joint(h5, "0001")
+    d2, e2 = joint(h5, "0002")
+    d3, _ = joint(h5, "0003")
+    np.testing.assert_array_equal(d2["CFLUIDP"], d1["CFLUIDP"])
+    assert e2 == e1 and e1 > 0.0
+    # rel 1e-9 of the largest pressure: the same system solved from another start
+    np.testing.assert_allclose(d2["CPRESS"], d1["CPRESS"], rtol=0, atol=1e-9 * d1["CPRESS"].max())
+    np.testing.assert_array_equal(d3["CFLUIDP"], 0.0)
+    np.testing.assert_allclose(d3["CPRESS"], dry["CPRESS"], rtol=0, atol=1e-9 * dry["CPRESS"].max())
 
 
 @pytest.mark.parametrize("text,message,extra", [
