@@ -7,6 +7,9 @@
 !> Starting from the uncracked joint, each pass can only lengthen the crack while the
 !> opening grows with the uplift, so the loop reaches the shortest crack in
 !> equilibrium with its own water, the one the no-tension gravity method finds.
+!> A *PRESSURE PENETRATION (an uplift bound to one pair) runs through the same loop
+!> with Abaqus' law: it starts dry, and the fluid pressure fills the part reached from
+!> the exposed node through open nodes, nothing beyond (vemcontact_contact_uplift).
 module vemcontact_driver_penetration
    use vemcontact_kinds, only: wp
    use vemcontact_error, only: error_t, fatal_error, err_solver, err_input
