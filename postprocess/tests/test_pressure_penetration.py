@@ -202,6 +202,17 @@ def test_critical_pressure_lets_fluid_further(exe, tmp_path, field4):
     check_statics(d)
 
 
+def test_penetration_time_has_no_effect(exe, tmp_path):
+    """PENETRATION TIME is accepted; a static step applies the pressure at once, so the
+    results are those without it, value for value."""
+    d0, e0 = joint(run(exe, joint_deck(tmp_path / "a.inp", pp_text()), tmp_path))
+    text = pp_text().replace("SLAVE=BLOCKBOT", "SLAVE=BLOCKBOT, PENETRATION TIME=0.01")
+    d1, e1 = joint(run(exe, joint_deck(tmp_path / "b.inp", text), tmp_path))
+    assert e1 == e0
+    for k in ("CPRESS", "CFLUIDP"):
+        np.testing.assert_array_equal(d1[k], d0[k])
+
+
 def test_later_steps(exe, tmp_path):
     """The penetration holds in a later step that does not repeat it (the same state),
     and a later *PRESSURE PENETRATION of the same pair replaces it: p = 0 leaves the

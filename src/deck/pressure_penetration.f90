@@ -17,7 +17,7 @@
 module vemcontact_deck_pressure_penetration
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, uplift_t
-   use vemcontact_deck_state, only: deck_parser_t, here, err_here, refuse_here, field, get_real, node_index, &
+   use vemcontact_deck_state, only: deck_parser_t, here, err_here, refuse_here, warn_here, field, get_real, node_index, &
                                     get_set, set_suggestion, ref_kind, ref_id, ref_name, tidy_items
    use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param, has_param, squeeze, to_upper, int_str
    use vemcontact_deck_numbers, only: parse_real, num_ok
@@ -80,6 +80,9 @@ contains
             return
          end if
       end if
+      if (has_param(kw, 'PENETRATIONTIME')) &
+         call warn_here(p, '*PRESSURE PENETRATION, PENETRATION TIME= is accepted and has no effect: '// &
+                        'a static step applies the fluid pressure on newly opened parts at once')
       up%penetration = .true.
       nline = 0
       do
