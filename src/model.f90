@@ -270,6 +270,16 @@ module vemcontact_model
       !> pressure penetration (Abaqus' meaning): the open part contiguous from the heel
       !> carries the headwater, the rest the distribution restarted at the crack tip
       logical :: penetration = .false.
+      !> *PRESSURE PENETRATION (Abaqus' keyword): the contact pair (index into model%pairs)
+      !> whose joint the fluid enters; 0 for *UPLIFT.  The fluid pressure is then uniform
+      !> over the open part reached from the exposed slave node (heel holds its
+      !> coordinates) and zero beyond it.
+      integer :: pair = 0
+      integer(ip) :: exposed_slave = 0        !< node exposed to the fluid on the slave
+      integer(ip) :: exposed_master = 0       !< node exposed to the fluid on the master
+      real(wp) :: fluid_pressure = 0.0_wp     !< the fluid pressure p
+      !> a node is open to the fluid while its contact pressure is at or below this
+      real(wp) :: critical_pressure = 0.0_wp
       type(source_loc_t) :: loc
    end type uplift_t
 

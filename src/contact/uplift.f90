@@ -64,15 +64,23 @@ contains
       end if
    end function uplift_head
 
-   !> Water pressure gamma_w max(0, head - y) at the joint point x (y up).
+   !> Water pressure gamma_w max(0, head - y) at the joint point x (y up); for a
+   !> *PRESSURE PENETRATION the fluid pressure where the joint is wetted.
    pure real(wp) function uplift_pressure(up, x, s_tip) result(p)
       type(uplift_t), intent(in) :: up
       real(wp), intent(in) :: x(2), s_tip
+      if (up%pair > 0) then
+         ! *PRESSURE PENETRATION: p on the wetted part (distance from the exposed node
+         ! up to s_tip, negative when nothing entered), none beyond
+         p = merge(up%fluid_pressure, 0.0_wp, norm2(x - up%heel) <= s_tip)
+         return
+      end if
       p = up%gamma*max(0.0_wp, uplift_head(up, joint_position(up, x), s_tip) - x(2))
    end function uplift_pressure
 
    !> The uplift in force on each slave entry of `contact`: the index into `uplifts`
-   !> of its pair's interaction, 0 for none.
+   !> of its pair's interaction (of its pair for a *PRESSURE PENETRATION, which wins
+   !> when both name the same joint), 0 for none.
    pure function uplift_of_entries(model, contact, uplifts) result(k)
       type(model_t), intent(in) :: model
       type(contact_state_t), intent(in) :: contact
@@ -82,7 +90,11 @@ contains
       allocate (k(contact%n), source=0)
       do i = 1, contact%n
          do j = 1, size(uplifts)
-            if (model%pairs(contact%pair(i))%interaction == uplifts(j)%interaction) k(i) = j
+            if (uplifts(j)%pair > 0) then
+               if (contact%pair(i) == uplifts(j)%pair) k(i) = j
+            else if (model%pairs(contact%pair(i))%interaction == uplifts(j)%interaction) then
+               k(i) = j
+            end if
          end do
       end do
    end function uplift_of_entries
@@ -91,6 +103,10 @@ contains
    !> contiguously from the heel (0 when the node nearest the heel is closed), with
    !> the number of those open nodes and of all the uplift's nodes.  A node is open
    !> when its contact is not active (Abaqus' criterion with zero critical pressure).
+   !> For a *PRESSURE PENETRATION (up%pair > 0) the nodes are taken in order of their
+   !> distance from the exposed slave node (a straight joint: along it), a node is open
+   !> while its contact pressure is at or below the critical pressure, and s_tip is
+   !> the distance of the last wetted node, -1 when the exposed node itself is closed.
    pure subroutine crack_front(model, contact, which, j, up, s_tip, nopen, nall, arc)
       type(model_t), intent(in) :: model
       type(contact_state_t), intent(in) :: contact
@@ -109,11 +125,16 @@ contains
       nall = count(which == j)
       allocate (s(contact%n), open(contact%n), done(contact%n))
       do i = 1, contact%n
-         s(i) = joint_position(up, model%x(:, contact%node(i)))
-         open(i) = .not. contact%active(i)
+         if (up%pair > 0) then
+            s(i) = norm2(model%x(:, contact%node(i)) - up%heel)
+            open(i) = .not. contact%active(i) .or. entry_pressure(contact, i) <= up%critical_pressure
+         else
+            s(i) = joint_position(up, model%x(:, contact%node(i)))
+            open(i) = .not. contact%active(i)
+         end if
       end do
       done = which /= j
-      s_tip = 0.0_wp
+      s_tip = merge(-1.0_wp, 0.0_wp, up%pair > 0)
       nopen = 0
       length = 0.0_wp
       x_last = up%heel
@@ -129,6 +150,19 @@ contains
       end do
       if (present(arc)) arc = length
    end subroutine crack_front
+
+   !> The effective contact pressure of entry i (CPRESS): its normal force over CNAREA.
+   pure real(wp) function entry_pressure(contact, i) result(pc)
+      type(contact_state_t), intent(in) :: contact
+      integer, intent(in) :: i
+      pc = 0.0_wp
+      if (.not. contact%active(i) .or. contact%iseg(i) == 0) return
+      if (allocated(contact%balanced)) then
+         pc = contact%balanced(i)/(contact%length(i)*contact%thick(i))
+      else
+         pc = contact%normal_force(i)/(contact%length(i)*contact%thick(i))
+      end if
+   end function entry_pressure
 
    !> Add to f the uplift's forces on both faces and set each entry's pressure
    !> (cfluidp, 0 where no uplift acts) for the crack fronts s_tip(j) of the uplifts;

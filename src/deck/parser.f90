@@ -20,7 +20,7 @@ module vemcontact_deck_parser
                                        kw_output, kw_uplift, kw_equation, kw_part, kw_end_part, kw_assembly, &
                                        kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
                                        kw_initial_conditions, kw_temperature, kw_expansion, kw_tie, kw_amplitude, kw_friction, &
-                                       kw_strength_reduction
+                                       kw_strength_reduction, kw_pressure_penetration
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
@@ -35,6 +35,7 @@ module vemcontact_deck_parser
    use vemcontact_deck_amplitude, only: read_amplitude, load_amplitude
    use vemcontact_deck_outputs, only: read_output_request, read_output
    use vemcontact_deck_uplift, only: read_uplift
+   use vemcontact_deck_pressure_penetration, only: read_pressure_penetration
    use vemcontact_deck_strength_reduction, only: read_strength_reduction
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
                                       read_contact_pair, read_controls, read_friction
@@ -179,6 +180,8 @@ contains
             call read_output(p, model, kw)
          case (kw_uplift)
             call read_uplift(p, model, kw)
+         case (kw_pressure_penetration)
+            call read_pressure_penetration(p, model, kw)
          case (kw_equation)
             call read_equation(p, model)
          case (kw_part)
@@ -251,7 +254,7 @@ contains
       integer, intent(in) :: id
       if (p%cur%load_loc%line > 0) return
       select case (id)
-      case (kw_boundary, kw_cload, kw_dload, kw_dsload, kw_uplift, kw_temperature)
+      case (kw_boundary, kw_cload, kw_dload, kw_dsload, kw_uplift, kw_temperature, kw_pressure_penetration)
          p%cur%load_loc = here(p)
          p%cur%load_kw = '*'//trim(keywords(id)%name)
       end select

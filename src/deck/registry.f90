@@ -27,7 +27,8 @@ module vemcontact_deck_registry
                                  kw_part = 36, kw_end_part = 37, kw_assembly = 38, kw_end_assembly = 39, &
                                  kw_instance = 40, kw_end_instance = 41, kw_preprint = 42, kw_restart = 43, &
                                  kw_initial_conditions = 44, kw_temperature = 45, kw_expansion = 46, kw_tie = 47, &
-                                 kw_amplitude = 48, kw_friction = 49, kw_strength_reduction = 50
+                                 kw_amplitude = 48, kw_friction = 49, kw_strength_reduction = 50, &
+                                 kw_pressure_penetration = 51
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -59,7 +60,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(50) = [ &
+   type(keyword_spec_t), parameter :: keywords(51) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -109,9 +110,10 @@ module vemcontact_deck_registry
                                       keyword_spec_t('TIE', ctx_model, data_required), &
                                       keyword_spec_t('AMPLITUDE', ctx_any, data_required), &
                                       keyword_spec_t('FRICTION', ctx_model, data_optional), &
-                                      keyword_spec_t('STRENGTH REDUCTION', ctx_step, data_optional)]
+                                      keyword_spec_t('STRENGTH REDUCTION', ctx_step, data_optional), &
+                                      keyword_spec_t('PRESSURE PENETRATION', ctx_step, data_required)]
 
-   type(param_spec_t), parameter :: params(157) = [ &
+   type(param_spec_t), parameter :: params(162) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -237,6 +239,14 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_uplift, 'INTERACTION', par_value, .true., val_name, ''), &
                                     param_spec_t(kw_uplift, 'UNIT WEIGHT', par_value, .true., val_real, ''), &
                                     param_spec_t(kw_uplift, 'PENETRATION', par_flag, .false., val_name, ''), &
+                                    ! *PRESSURE PENETRATION (Abaqus, src/deck/pressure_penetration.f90)
+                                    param_spec_t(kw_pressure_penetration, 'MASTER', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_pressure_penetration, 'SLAVE', par_value, .true., val_name, ''), &
+                                    param_spec_t(kw_pressure_penetration, 'CRITICAL PRESSURE', par_value, .false., &
+                                                 val_real, ''), &
+                                    param_spec_t(kw_pressure_penetration, 'PENETRATION TIME', par_value, .false., &
+                                                 val_real, ''), &
+                                    param_spec_t(kw_pressure_penetration, 'AMPLITUDE', par_value, .false., val_name, ''), &
                                     ! Abaqus/CAE structure (src/deck/assembly.f90)
                                     param_spec_t(kw_part, 'NAME', par_value, .true., val_name, ''), &
                                     param_spec_t(kw_assembly, 'NAME', par_value, .false., val_name, ''), &

@@ -22,7 +22,7 @@ module vemcontact_deck_uplift
    implicit none
    private
 
-   public :: read_uplift
+   public :: read_uplift, push
 
    character(len=*), parameter :: data_help = 'the data lines are: x_heel, y_heel, headwater elevation; '// &
                                               'x_toe, y_toe, tailwater elevation; and optionally '// &
@@ -145,14 +145,14 @@ contains
       end function s_of
    end subroutine read_uplift
 
-   !> Append `up`, replacing an entry of the same interaction.
+   !> Append `up`, replacing an entry of the same interaction and contact pair.
    subroutine push(list, up)
       type(uplift_t), allocatable, intent(inout) :: list(:)
       type(uplift_t), intent(in) :: up
       integer :: k
       if (.not. allocated(list)) allocate (list(0))
       do k = 1, size(list)
-         if (list(k)%interaction == up%interaction) then
+         if (list(k)%interaction == up%interaction .and. list(k)%pair == up%pair) then
             list(k) = up
             return
          end if

@@ -84,7 +84,8 @@ contains
       end if
    end subroutine advance_load_state
 
-   !> A step's *UPLIFT replaces the one in force on the same interaction.
+   !> A step's *UPLIFT replaces the one in force on the same interaction, a
+   !> *PRESSURE PENETRATION the one on the same contact pair.
    pure subroutine merge_uplift(old, new)
       type(uplift_t), allocatable, intent(inout) :: old(:)
       type(uplift_t), intent(in) :: new(:)
@@ -93,7 +94,7 @@ contains
       do k = 1, size(new)
          replaced = .false.
          do j = 1, size(old)
-            if (old(j)%interaction == new(k)%interaction) then
+            if (old(j)%interaction == new(k)%interaction .and. old(j)%pair == new(k)%pair) then
                old(j) = new(k)
                replaced = .true.
             end if

@@ -7,10 +7,13 @@
 !> Starting from the uncracked joint, each pass can only lengthen the crack while the
 !> opening grows with the uplift, so the loop reaches the shortest crack in
 !> equilibrium with its own water, the one the no-tension gravity method finds.
+!> A *PRESSURE PENETRATION (an uplift bound to one pair) runs through the same loop
+!> with Abaqus' law: it starts dry, and the fluid pressure fills the part reached from
+!> the exposed node through open nodes, nothing beyond (vemcontact_contact_uplift).
 module vemcontact_driver_penetration
    use vemcontact_kinds, only: wp
-   use vemcontact_error, only: error_t, fatal_error, err_solver
-   use vemcontact_model, only: model_t, uplift_t
+   use vemcontact_error, only: error_t, fatal_error, err_solver, err_input
+   use vemcontact_model, only: model_t, uplift_t, location_string
    use vemcontact_contact_iteration, only: contact_system_t, iteration_record_t, solve_contact
    use vemcontact_contact_active_set, only: contact_state_t
    use vemcontact_contact_uplift, only: uplift_of_entries, crack_front, add_uplift_forces, slave_face_vectors
@@ -57,6 +60,10 @@ contains
       allocate (s_tip(size(uplifts)), s_new(size(uplifts)), arc(size(uplifts)), arc_new(size(uplifts)), &
                 source=0.0_wp)
       allocate (nopen(size(uplifts)), nall(size(uplifts)), source=0)
+      ! a *PRESSURE PENETRATION starts dry (-1: not even the exposed node wetted)
+      where (uplifts%pair > 0) s_tip = -1.0_wp
+      call check_exposed(model, contact, uplifts, error)
+      if (allocated(error)) return
       allocate (contact%cfluidp(contact%n), f(size(fext)), records(0), seen(size(uplifts), 0))
       iterations = 0
       factorizations = 0
@@ -101,8 +108,17 @@ contains
             write (buf, '(2x,a,i0,a,es12.5,a,i0,a,i0,a)') 'pressure penetration, pass ', pass, &
                ': water entered ', arc(j), ' along the joint from the heel (', nopen(j), ' of ', nall(j), &
                ' slave nodes open from the heel) on interaction '
-            if (present(log)) call log%say(trim(buf)//' '//model%interactions(uplifts(j)%interaction)%name// &
-                                           '; solving again with the headwater in the crack')
+            if (uplifts(j)%pair > 0) write (buf, '(2x,a,i0,a,es12.5,a,i0,a,i0,a,i0)') &
+               'pressure penetration, pass ', pass, ': fluid entered ', arc(j), &
+               ' along the joint from the exposed node (', nopen(j), ' of ', nall(j), &
+               ' slave nodes wetted) on contact pair ', uplifts(j)%pair
+            if (.not. present(log)) cycle
+            if (uplifts(j)%pair > 0) then
+               call log%say(trim(buf)//'; solving again with the fluid in the joint')
+            else
+               call log%say(trim(buf)//' '//model%interactions(uplifts(j)%interaction)%name// &
+                            '; solving again with the headwater in the crack')
+            end if
          end do
       end do
       if (pass > max_passes) then
@@ -114,7 +130,11 @@ contains
       allocate (contact%water_entered(size(model%pairs)), source=-1.0_wp)
       do j = 1, size(uplifts)
          if (.not. uplifts(j)%penetration) cycle
-         where (model%pairs%interaction == uplifts(j)%interaction) contact%water_entered = arc(j)
+         if (uplifts(j)%pair > 0) then
+            contact%water_entered(uplifts(j)%pair) = arc(j)
+         else
+            where (model%pairs%interaction == uplifts(j)%interaction) contact%water_entered = arc(j)
+         end if
       end do
       sys%records = records
       sys%iterations = iterations
@@ -133,7 +153,12 @@ contains
             write (buf, '(2x,a,es13.6,a)') 'uplift on interaction '// &
                model%interactions(uplifts(j)%interaction)%name//': force ', force, &
                ' (sum of CFLUIDP * CNAREA)'
-            if (uplifts(j)%penetration) then
+            if (uplifts(j)%pair > 0) then
+               write (buf, '(2x,a,i0,a,es13.6,a,es12.5,a,i0,a,i0,a,i0,a)') '*PRESSURE PENETRATION on contact pair ', &
+                  uplifts(j)%pair, ': fluid force ', force, ' (sum of CFLUIDP * CNAREA); fluid entered ', arc(j), &
+                  ' along the joint from the exposed node (', nopen(j), ' of ', nall(j), &
+                  ' slave nodes wetted; contact solved ', pass, ' times)'
+            else if (uplifts(j)%penetration) then
                write (buf, '(a,a,es12.5,a,i0,a,i0,a,i0,a)') trim(buf), '; water entered ', arc(j), &
                   ' along the joint from the heel (', nopen(j), ' of ', nall(j), &
                   ' slave nodes open from the heel; contact '// &
@@ -143,4 +168,34 @@ contains
          end do
       end subroutine summary
    end subroutine solve_with_uplift
+
+   !> Each *PRESSURE PENETRATION's exposed nodes lie on its pair: the slave node among
+   !> the pair's slave entries, the master node on one of its master segments.
+   subroutine check_exposed(model, contact, uplifts, error)
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(in) :: contact
+      type(uplift_t), intent(in) :: uplifts(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer :: j
+      character(len=32) :: id
+      do j = 1, size(uplifts)
+         associate (up => uplifts(j))
+            if (up%pair == 0) cycle
+            if (.not. any(contact%pair(1:contact%n) == up%pair .and. contact%node(1:contact%n) == up%exposed_slave)) then
+               write (id, '(i0)') model%node_id(up%exposed_slave)
+               call fatal_error(error, location_string(model, up%loc)//': error: *PRESSURE PENETRATION: the exposed '// &
+                                'slave node '//trim(id)//' is not a node of the contact pair''s slave surface', &
+                                err_input)
+               return
+            end if
+            if (.not. any(contact%pairs(up%pair)%seg == up%exposed_master)) then
+               write (id, '(i0)') model%node_id(up%exposed_master)
+               call fatal_error(error, location_string(model, up%loc)//': error: *PRESSURE PENETRATION: the exposed '// &
+                                'master node '//trim(id)//' is not a node of the contact pair''s master surface', &
+                                err_input)
+               return
+            end if
+         end associate
+      end do
+   end subroutine check_exposed
 end module vemcontact_driver_penetration
