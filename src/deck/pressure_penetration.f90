@@ -17,13 +17,13 @@
 module vemcontact_deck_pressure_penetration
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, uplift_t
-   use vemcontact_deck_state, only: deck_parser_t, here, err_here, refuse_here, warn_here, field, get_real, node_index, &
-                                    get_set, set_suggestion, ref_kind, ref_id, ref_name, tidy_items
+   use vemcontact_deck_state, only: deck_parser_t, item_list_t, here, err_here, refuse_here, warn_here, field, get_real
    use vemcontact_deck_fields, only: keyword_line_t, split_fields, get_param, has_param, squeeze, to_upper, int_str
    use vemcontact_deck_numbers, only: parse_real, num_ok
    use vemcontact_deck_lines, only: advance, skip_data
    use vemcontact_deck_source, only: line_data
    use vemcontact_deck_uplift, only: push
+   use vemcontact_deck_loads, only: field_nodes
    implicit none
    private
 
@@ -136,37 +136,18 @@ contains
          character(len=*), intent(in) :: which
          integer(ip), intent(out) :: node
          logical, intent(out) :: ok
-         integer :: kind, kset
-         integer(ip) :: id
-         character(len=:), allocatable :: name
-         ok = .false.
+         type(item_list_t) :: nodes
          node = 0
-         call ref_kind(p, k, kind, id, 'node')
-         if (kind == ref_id) then
-            node = node_index(p, model, id)
-            if (node == 0) then
-               call err_here(p, 'undefined node '//int_str(int(id)), 'the exposed '//which//' node')
-               return
-            end if
-         else if (kind == ref_name) then
-            name = to_upper(squeeze(field(p, k)))
-            call get_set(model%nsets, p%nset_items, p%nnset, name, here(p), .false., kset)
-            if (kset == 0) then
-               call err_here(p, 'undefined node set '//name, set_suggestion(model%nsets, p%nnset, name))
-               return
-            end if
-            call tidy_items(p%nset_items(kset))
-            if (p%nset_items(kset)%n /= 1) then
-               call err_here(p, 'the exposed '//which//' node set '//name//' has '// &
-                             int_str(int(p%nset_items(kset)%n))//' nodes', &
-                                'give the one node of the '//which//' surface at the joint''s exposed end')
-               return
-            end if
-            node = p%nset_items(kset)%a(1)
-         else
+         call field_nodes(p, model, k, nodes, ok)
+         if (.not. ok) return
+         if (nodes%n /= 1) then
+            ok = .false.
+            call err_here(p, 'the exposed '//which//' node set '//to_upper(squeeze(field(p, k)))//' has '// &
+                          int_str(int(nodes%n))//' nodes', &
+                          'give the one node of the '//which//' surface at the joint''s exposed end')
             return
          end if
-         ok = .true.
+         node = nodes%a(1)
       end subroutine one_node
    end subroutine read_pressure_penetration
 end module vemcontact_deck_pressure_penetration

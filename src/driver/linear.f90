@@ -213,25 +213,21 @@ contains
                                                          'process only', err_solver)
             return
          end if
-         ! T^T K T is linear in K: the eliminated shares add up to the eliminated matrix
-         call eliminate_equations(self%cs, self%k, adj_ptr, adj, ok)
-         if (.not. ok) then
-            call fatal_error(error, 'internal error: an *EQUATION coupling is outside the matrix pattern', &
-                             err_solver)
-            return
-         end if
-         kdiag = [(self%k%val(self%k%col_ptr(j + 1) - 1), j=1, self%k%n)]
-         call self%solver%sum_over_ranks(kdiag, error)
-         self%kmax_whole = max(0.0_wp, maxval(abs(kdiag)))
       else
          call assemble_stiffness(model, self%k, error)
          if (allocated(error)) return
-         call eliminate_equations(self%cs, self%k, adj_ptr, adj, ok)
-         if (.not. ok) then
-            call fatal_error(error, 'internal error: an *EQUATION coupling is outside the matrix pattern', &
-                             err_solver)
-            return
-         end if
+      end if
+      ! under MPI each process eliminates from its share: T^T K T is linear in K, so the
+      ! eliminated shares add up to the eliminated matrix
+      call eliminate_equations(self%cs, self%k, adj_ptr, adj, ok)
+      if (.not. ok) then
+         call fatal_error(error, 'internal error: an *EQUATION coupling is outside the matrix pattern', err_solver)
+         return
+      end if
+      if (self%dist) then
+         kdiag = [(self%k%val(self%k%col_ptr(j + 1) - 1), j=1, self%k%n)]
+         call self%solver%sum_over_ranks(kdiag, error)
+         self%kmax_whole = max(0.0_wp, maxval(abs(kdiag)))
       end if
       if (allocated(error)) return
       self%t_assemble = wall_time() - t0

@@ -252,36 +252,7 @@ contains
       real(wp), intent(in) :: dtemp(:)
       real(wp), intent(inout) :: s_elem(:, :)
       real(wp), intent(inout), optional :: s_at(:, :)
-      real(wp) :: dmean
-      integer :: e, i
-      integer(ip) :: first
-      if (.not. has_thermal(model, dtemp)) return
-      do e = 1, model%nelem
-         associate (mat => model%materials(model%elem_mat(e)))
-            if (.not. mat%has_expansion) cycle
-            dmean = mean_dt(model, dtemp, e)
-            call correct(s_elem(:, e), dmean)
-            if (present(s_at)) then
-               first = model%elem_ptr(e)
-               do i = 1, int(model%elem_ptr(e + 1) - first)
-                  call correct(s_at(:, first + i - 1), point_dt(model, dtemp, e, first + i - 1, dmean))
-               end do
-            end if
-         end associate
-      end do
-   contains
-      pure subroutine correct(sig, dt)
-         real(wp), intent(inout) :: sig(4)
-         real(wp), intent(in) :: dt
-         real(wp) :: d(3, 3), s0
-         associate (mat => model%materials(model%elem_mat(e)))
-            call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
-            s0 = eigen_factor(mat%poisson, model%elem_plane(e))*(d(1, 1) + d(1, 2))*mat%expansion*dt
-            sig(1:2) = sig(1:2) - s0
-            if (model%elem_plane(e) == plane_strain) &
-               sig(3) = mat%poisson*(sig(1) + sig(2)) - mat%young*mat%expansion*dt
-         end associate
-      end subroutine correct
+      call thermal_update(model, dtemp, .false., s_elem, s_at)
    end subroutine thermal_stress
 
    !> E <- E + the thermal strain, for the strains recovered as D^-1 S (mechanical):
@@ -292,36 +263,55 @@ contains
       real(wp), intent(in) :: dtemp(:)
       real(wp), intent(inout) :: e_elem(:, :)
       real(wp), intent(inout), optional :: e_at(:, :)
+      call thermal_update(model, dtemp, .true., e_elem, e_at)
+   end subroutine thermal_strain
+
+   !> The walk thermal_stress and thermal_strain share: every element with expansion,
+   !> v_elem at the element's mean dT and v_at (optional) at each element point's dT
+   !> (point_dt); `strain` chooses the strain's addition over the stress's correction.
+   pure subroutine thermal_update(model, dtemp, strain, v_elem, v_at)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: dtemp(:)
+      logical, intent(in) :: strain
+      real(wp), intent(inout) :: v_elem(:, :)
+      real(wp), intent(inout), optional :: v_at(:, :)
       real(wp) :: dmean
       integer :: e, i
       integer(ip) :: first
       if (.not. has_thermal(model, dtemp)) return
       do e = 1, model%nelem
-         associate (mat => model%materials(model%elem_mat(e)))
-            if (.not. mat%has_expansion) cycle
-            dmean = mean_dt(model, dtemp, e)
-            call add(e_elem(:, e), dmean)
-            if (present(e_at)) then
-               first = model%elem_ptr(e)
-               do i = 1, int(model%elem_ptr(e + 1) - first)
-                  call add(e_at(:, first + i - 1), point_dt(model, dtemp, e, first + i - 1, dmean))
-               end do
-            end if
-         end associate
+         if (.not. model%materials(model%elem_mat(e))%has_expansion) cycle
+         dmean = mean_dt(model, dtemp, e)
+         call update(v_elem(:, e), dmean)
+         if (present(v_at)) then
+            first = model%elem_ptr(e)
+            do i = 1, int(model%elem_ptr(e + 1) - first)
+               call update(v_at(:, first + i - 1), point_dt(model, dtemp, e, first + i - 1, dmean))
+            end do
+         end if
       end do
    contains
-      pure subroutine add(eps, dt)
-         real(wp), intent(inout) :: eps(4)
+      pure subroutine update(v, dt)
+         real(wp), intent(inout) :: v(4)
          real(wp), intent(in) :: dt
+         real(wp) :: d(3, 3), s0
          associate (mat => model%materials(model%elem_mat(e)))
-            if (model%elem_plane(e) == plane_strain) then
-               eps(1:2) = eps(1:2) + (1.0_wp + mat%poisson)*mat%expansion*dt
+            if (strain) then
+               if (model%elem_plane(e) == plane_strain) then
+                  v(1:2) = v(1:2) + (1.0_wp + mat%poisson)*mat%expansion*dt
+               else
+                  v(1:3) = v(1:3) + mat%expansion*dt
+               end if
             else
-               eps(1:3) = eps(1:3) + mat%expansion*dt
+               call elastic_matrix(mat%young, mat%poisson, model%elem_plane(e), d)
+               s0 = eigen_factor(mat%poisson, model%elem_plane(e))*(d(1, 1) + d(1, 2))*mat%expansion*dt
+               v(1:2) = v(1:2) - s0
+               if (model%elem_plane(e) == plane_strain) &
+                  v(3) = mat%poisson*(v(1) + v(2)) - mat%young*mat%expansion*dt
             end if
          end associate
-      end subroutine add
-   end subroutine thermal_strain
+      end subroutine update
+   end subroutine thermal_update
 
    !> dT at the element point k (an index into elem_conn) of element e: the node's own
    !> for a second-order element, whose stress varies over it, the element's mean
