@@ -280,6 +280,9 @@ module vemcontact_model
       real(wp) :: fluid_pressure = 0.0_wp     !< the fluid pressure p
       !> a node is open to the fluid while its contact pressure is at or below this
       real(wp) :: critical_pressure = 0.0_wp
+      !> the part of the water pressure in force: below 1 within a ramped step that
+      !> brings this uplift in (the driver's load increments)
+      real(wp) :: factor = 1.0_wp
       type(source_loc_t) :: loc
    end type uplift_t
 
