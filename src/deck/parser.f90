@@ -4,7 +4,7 @@
 !> next line it can make sense of, so one run reports all problems of a deck.
 module vemcontact_deck_parser
    use vemcontact_model, only: model_t, output_node, output_element, output_contact
-   use vemcontact_deck_state, only: deck_parser_t, err_here, refuse_here, here
+   use vemcontact_deck_state, only: deck_parser_t, err_here, err_at, refuse_here, here
    use vemcontact_deck_source, only: line_keyword, line_data, line_eof
    use vemcontact_deck_fields, only: keyword_line_t, parse_keyword_line
    use vemcontact_deck_registry, only: keywords, find_keyword, keyword_suggestion, is_calculix_keyword, &
@@ -20,7 +20,7 @@ module vemcontact_deck_parser
                                        kw_output, kw_uplift, kw_equation, kw_part, kw_end_part, kw_assembly, &
                                        kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
                                        kw_initial_conditions, kw_temperature, kw_expansion, kw_tie, kw_amplitude, kw_friction, &
-                                       kw_strength_reduction, kw_pressure_penetration
+                                       kw_strength_reduction, kw_pressure_penetration, kw_change_friction
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
@@ -38,7 +38,7 @@ module vemcontact_deck_parser
    use vemcontact_deck_pressure_penetration, only: read_pressure_penetration
    use vemcontact_deck_strength_reduction, only: read_strength_reduction
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
-                                      read_contact_pair, read_controls, read_friction
+                                      read_contact_pair, read_controls, read_friction, read_change_friction
    implicit none
    private
 
@@ -85,6 +85,7 @@ contains
          end if
          if (id /= kw_elastic .and. id /= kw_density .and. id /= kw_expansion) p%cur_mat = 0
          if (id /= kw_surface_behavior .and. id /= kw_friction) p%cur_inter = 0
+         if (id /= kw_friction) call end_change_friction(p)
          call check_keyword(p, kw, id, ok)
          if (ok) call check_context(p, id, ok)
          if (.not. ok) then
@@ -92,6 +93,7 @@ contains
             if (id == kw_element) p%element_errors = .true.
             if (id == kw_material) p%cur_mat = -1   ! its *ELASTIC and *DENSITY are dropped silently
             if (id == kw_surface_interaction) p%cur_inter = -1   ! and its *SURFACE BEHAVIOR
+            if (id == kw_change_friction) p%change_inter = -1   ! and its *FRICTION
             if (id == kw_surface_behavior) call drop_behavior(p, model)
             if (id == kw_friction .and. p%cur_inter > 0) model%interactions(p%cur_inter)%has_friction = .true.
             call skip_data(p)
@@ -237,6 +239,9 @@ contains
          call read_behavior(p, model, kw)
       case (kw_friction)
          call read_friction(p, model, kw)
+      case (kw_change_friction)
+         call read_change_friction(p, model, kw)
+         call no_data(p, '*CHANGE FRICTION')
       case (kw_contact_pair)
          call read_contact_pair(p, kw)
       case (kw_contact_controls)
@@ -305,6 +310,15 @@ contains
       end select
    end subroutine read_assembly_data
 
+   !> A *CHANGE FRICTION ends with the *FRICTION after it; any other keyword there
+   !> leaves it without one (an error at its line).
+   subroutine end_change_friction(p)
+      type(deck_parser_t), intent(inout) :: p
+      if (p%change_inter > 0) call err_at(p, p%change_loc, '*CHANGE FRICTION must be followed by *FRICTION', &
+                                          'the *FRICTION line after it gives the new law: mu [, stick slope]')
+      p%change_inter = 0
+   end subroutine end_change_friction
+
    !> Inside a *PART, the set names of NSET= and ELSET= are the part's own:
    !> "part.name" until its *INSTANCE renames them.
    subroutine qualify_set_names(p, kw)
@@ -336,7 +350,8 @@ contains
       integer, intent(in) :: id
       if (p%cur%load_loc%line > 0) return
       select case (id)
-      case (kw_boundary, kw_cload, kw_dload, kw_dsload, kw_uplift, kw_temperature, kw_pressure_penetration)
+      case (kw_boundary, kw_cload, kw_dload, kw_dsload, kw_uplift, kw_temperature, kw_pressure_penetration, &
+            kw_change_friction)
          p%cur%load_loc = here(p)
          p%cur%load_kw = '*'//trim(keywords(id)%name)
       end select
