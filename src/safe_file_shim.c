@@ -188,7 +188,7 @@ static int frame_digits(const char *s, size_t n) {
 /* True when `name` is one of job's result files: JOB.pvd, JOB.h5, JOB.xdmf, JOB.mtx,
  * JOB_NNNN.vtu, JOB_contact_NNNN.vtu (and the increments' JOB_NNNN_MMMM.vtu,
  * JOB_contact_NNNN_MMMM.vtu), JOB_contact_pairK_NNNN.csv, JOB_print_NNNN.csv,
- * JOB_srm_NNNN.csv, JOB_phases.csv. */
+ * JOB_srm_NNNN.csv, JOB_phases.csv, JOB.sta. */
 static int is_job_result(const char *name, size_t n, const char *job) {
     size_t j = strlen(job);
     const char *r;
@@ -197,7 +197,8 @@ static int is_job_result(const char *name, size_t n, const char *job) {
     r = name + j;
     m = n - j;
     if ((m == 4 && memcmp(r, ".pvd", 4) == 0) || (m == 3 && memcmp(r, ".h5", 3) == 0) ||
-        (m == 4 && memcmp(r, ".mtx", 4) == 0) || (m == 5 && memcmp(r, ".xdmf", 5) == 0))
+        (m == 4 && memcmp(r, ".mtx", 4) == 0) || (m == 5 && memcmp(r, ".xdmf", 5) == 0) ||
+        (m == 4 && memcmp(r, ".sta", 4) == 0))
         return 1;
     if (r[0] != '_') return 0;
     r++;

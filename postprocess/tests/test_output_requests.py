@@ -65,8 +65,9 @@ def vtu_fields(path):
 
 
 def h5_fields(path, step):
+    """The result fields of a step (its increments table is not one: every step has it)."""
     with h5py.File(path) as f:
-        return set(f["steps"][step]), set(f["mesh"])
+        return set(f["steps"][step]) - {"increments"}, set(f["mesh"])
 
 
 def read_print(path):

@@ -34,6 +34,7 @@ module vemcontact_driver_static
    use vemcontact_driver_thermal, only: add_thermal_forces
    use vemcontact_post_labels, only: element_section_sets, element_parts
    use vemcontact_output_vtu, only: write_vtu, vtu_extras_t
+   use vemcontact_output_sta, only: sta_list_t
    use vemcontact_output_pvd, only: pvd_list_t, pvd_rewrite_due
    use vemcontact_output_hdf5, only: h5_writer_t
    use vemcontact_output_xdmf, only: write_xdmf
@@ -101,6 +102,7 @@ module vemcontact_driver_static
       !> the trials of the current step when it is a strength reduction step
       type(srm_result_t) :: srm
       type(pvd_list_t) :: pvd           !< the VTU files written, for JOB.pvd
+      type(sta_list_t) :: sta           !< the converged increments, for JOB.sta
       character(len=:), allocatable :: base  !< out_dir/job
       integer :: current = 0            !< the step being run
       integer :: done = 0               !< the last step whose results are in every file
@@ -130,6 +132,12 @@ contains
          b = ''
          if (rs%current > rs%done) write (b, '(a,i0)') 'in step ', rs%current
          call interrupt_context(error, trim(b), rs%done)
+      end if
+      ! JOB.sta: every converged increment, those of the failed step too (where it stopped)
+      if (opts%write_files .and. allocated(rs%base) .and. rs%current > 0) then
+         call rs%sta%write(rs%base//'.sta', err2)
+         if (allocated(err2)) call append_message(error, '(no .sta file: '//err2%message//')')
+         if (allocated(err2)) deallocate (err2)
       end if
       ! the .pvd lists every completed step, and only those
       if (opts%write_files .and. opts%write_vtu .and. rs%done > rs%pvd_steps) then
@@ -190,6 +198,7 @@ contains
       call log%say('results')
       if (opts%write_vtu) call log%say('  '//rs%base//'.pvd')
       call log%say('  '//rs%base//'.h5')
+      call log%say('  '//rs%base//'.sta')
       call log%say('  '//rs%base//'.xdmf')
    end subroutine run_steps
 
@@ -398,14 +407,16 @@ contains
       type(increment_control_t) :: ctl
       type(contact_state_t) :: contact_saved
       real(wp), allocatable :: u_start(:), u_saved(:)
+      real(wp) :: t_before
       logical :: ok, several
-      integer :: frequency
+      integer :: frequency, attempt
       character(len=200) :: buf
       frequency = output_frequency(model, istep)
       call ctl%start(model%steps(istep))
       ! one increment (the default): the log as without increments
       several = ctl%dt < ctl%period
       u_start = rs%u
+      attempt = 1
       do while (.not. ctl%finished())
          call ctl%next()
          if (several) then
@@ -440,9 +451,19 @@ contains
             rs%u = u_saved
             if (rs%contact%n > 0) rs%contact = contact_saved
             several = .true.
+            attempt = attempt + 1
             cycle
          end if
+         t_before = ctl%t
          call ctl%accept(rs%sys%iterations)
+         call rs%sta%add(istep, ctl%increment, attempt, rs%sys%iterations, rs%t_start + ctl%t, ctl%t, &
+                         ctl%t - t_before)
+         attempt = 1
+         ! JOB.sta as the run goes, after 1, 2, 4, ... increments (O(increments) in all)
+         if (opts%write_files .and. iand(rs%sta%n, rs%sta%n - 1) == 0) then
+            call rs%sta%write(rs%base//'.sta', error)
+            if (allocated(error)) return
+         end if
          if (ctl%finished()) exit
          if (frequency > 0) then
             if (mod(ctl%increment, frequency) == 0) then
@@ -526,6 +547,9 @@ contains
       if (model%steps(istep)%procedure == procedure_strength_reduction) then
          call write_srm(rs, istep, error)
          if (allocated(error)) return
+      else
+         call write_increments(rs, istep, error)
+         if (allocated(error)) return
       end if
       rs%done = istep
       rs%pvd_done = rs%pvd%n
@@ -539,6 +563,10 @@ contains
          call rs%pvd%write(rs%base//'.pvd', error)
          if (allocated(error)) return
          rs%pvd_steps = istep
+      end if
+      if (pvd_rewrite_due(istep) .or. istep == size(model%steps)) then
+         call rs%sta%write(rs%base//'.sta', error)
+         if (allocated(error)) return
       end if
       call log%lap('write')
       write (buf, '(2x,a,es12.4,a,es12.4,a,es10.3)') 'max |u_x| ', maxval(abs(rs%res%u_out(1::2))), &
@@ -902,6 +930,17 @@ contains
                             r%iterations, r%reason, error)
       end associate
    end subroutine write_srm
+
+   !> The converged increments of step istep in /steps/NNNN/increments.
+   subroutine write_increments(rs, istep, error)
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(error_t), allocatable, intent(out) :: error
+      real(wp), allocatable :: step_time(:), increment_time(:)
+      integer, allocatable :: attempt(:), iterations(:)
+      call rs%sta%of_step(istep, step_time, increment_time, attempt, iterations)
+      call rs%h5%write_increments(istep, step_time, increment_time, attempt, iterations, error)
+   end subroutine write_increments
 
    !> NNNN (the step, four digits or more) or NNNN_MMMM for increment `frame` > 0.
    pure function frame_suffix(istep, frame) result(s)

@@ -63,6 +63,7 @@ module vemcontact_output_hdf5
       procedure :: write_contact => h5_write_contact
       procedure :: write_iterations => h5_write_iterations
       procedure :: write_strength_reduction => h5_write_strength_reduction
+      procedure :: write_increments => h5_write_increments
       procedure :: discard_step => h5_discard_step
       procedure :: write_labels => h5_write_labels
       procedure :: write_results => h5_write_results
@@ -438,6 +439,37 @@ contains
       if (allocated(error)) return
       if (failed(self, hdferr, 'closing group '//gname, error)) return
    end subroutine h5_write_strength_reduction
+
+   !> The converged increments of step istep (JOB.sta's lines of the step), group
+   !> /steps/NNNN/increments: step_time and increment (size) at each increment's end,
+   !> attempts (1 + the cut-backs before it converged), iterations (contact
+   !> iterations; 1 without contact).
+   subroutine h5_write_increments(self, istep, step_time, increment_time, attempts, iterations, error)
+      class(h5_writer_t), intent(inout) :: self
+      integer, intent(in) :: istep
+      real(wp), intent(in) :: step_time(:), increment_time(:)
+      integer, intent(in) :: attempts(:), iterations(:)
+      type(error_t), allocatable, intent(out) :: error
+      character(len=:), allocatable :: gname
+      integer(hid_t) :: grp
+      integer(hsize_t) :: dims(1)
+      integer(ip), allocatable :: col(:)
+      integer :: hdferr
+      if (.not. check_open(self, 'write_increments', error)) return
+      gname = result_group(self, istep)//'/increments'
+      call h5gcreate_f(self%file, gname, grp, hdferr)
+      if (failed(self, hdferr, 'creating group '//gname, error)) return
+      dims = size(step_time, kind=hsize_t)
+      call put_real(self, grp, 'step_time', dims, step_time, error)
+      if (.not. allocated(error)) call put_real(self, grp, 'increment', dims, increment_time, error)
+      col = int(attempts, ip)
+      if (.not. allocated(error)) call put_int(self, grp, 'attempts', dims, col, error)
+      col = int(iterations, ip)
+      if (.not. allocated(error)) call put_int(self, grp, 'iterations', dims, col, error)
+      call h5gclose_f(grp, hdferr)
+      if (allocated(error)) return
+      if (failed(self, hdferr, 'closing group '//gname, error)) return
+   end subroutine h5_write_increments
 
    !> Add to /mesh (after write_mesh) the labels of the elements: element_set
    !> (index into element_set_names, the set of the element's *SOLID SECTION, 1-based,
