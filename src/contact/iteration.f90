@@ -108,6 +108,10 @@ module vemcontact_contact_iteration
       !> solver's finding that the matrix is not positive definite in floating point)
       logical :: pivot_failed = .false.
       real(wp) :: t_factorize = 0, t_solve = 0, t_search = 0
+      !> of the last solve_contact: the contact compliance columns solved (add_columns)
+      !> and their time (part of t_solve)
+      integer :: columns = 0
+      real(wp) :: t_columns = 0
       type(iteration_record_t), allocatable :: records(:)
       !> the contact compliance columns computed with the current factor
       !> (vemcontact_contact_condensed), kept across load states with the factor
@@ -265,6 +269,7 @@ contains
       type(logger_t), intent(inout), optional :: log
       type(iteration_state_t) :: s
       character(len=160) :: buf
+      character(len=12) :: tbuf
       integer :: it, sig
       logical :: converged
 
@@ -293,6 +298,12 @@ contains
             if (allocated(error)) return
             call contact%commit_friction()
             call contact%set_balanced(model, s%ku - fext, fixed)
+            if (sys%columns > 0 .and. present(log)) then
+               write (tbuf, '(f12.3)') sys%t_columns
+               write (buf, '(a,i0,a)') '  contact compliance: ', sys%columns, &
+                  ' columns solved with the factor in '//trim(adjustl(tbuf))//' s'
+               call log%say(trim(buf))
+            end if
             call report_slid_off(s, model, contact, log)
             return
          end if
@@ -330,6 +341,8 @@ contains
       sys%refactorized = .false.
       sys%t_factorize = 0
       sys%t_solve = 0
+      sys%columns = 0
+      sys%t_columns = 0
       s%op%sys => sys
       s%op%contact => contact
       s%op%fixed => fixed
@@ -852,6 +865,8 @@ contains
       integer, allocatable :: list(:, :)
       real(wp), allocatable :: b(:, :), z(:, :)
       integer :: first, last, block
+      real(wp) :: t0
+      t0 = wall_time()
       list = sys%cache%missing(need)
       block = max(condensed_block_min, min(condensed_block_max, condensed_block_values/max(1, size(fixed))))
       do first = 1, size(list, 2), block
@@ -863,6 +878,8 @@ contains
          call store_columns(sys%cache, contact, fixed, list(:, first:last), z)
          deallocate (b, z)
       end do
+      sys%columns = sys%columns + size(list, 2)
+      sys%t_columns = sys%t_columns + (wall_time() - t0)
    end subroutine add_columns
 
    !> x(:, c) = A^-1 b(:, c), one solve_system per column.
