@@ -21,7 +21,7 @@ Models:
 Every increment is its own step so that the HDF5 iteration records
 (/steps/NNNN/contact/iterations, docs/output-format.md) give the iterations and
 numeric factorizations of each increment.  Each pair (frictional, frictionless) runs
-back to back under `nice` and `/usr/bin/time -v` (wall time and peak memory); the
+back to back under `nice` and `/usr/bin/time -v` (wall time, CPU time and peak memory); the
 ratio is within the pair (the machine is shared and noisy).  Not a test: tests never
 check wall time.
 """
@@ -115,6 +115,9 @@ def run(exe, deck, out):
     wall = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", r.stderr)
     secs = float(wall.group(1) or 0) * 3600 + float(wall.group(2)) * 60 + float(wall.group(3))
     rss = float(re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr).group(1)) / 1024
+    # CPU seconds (user + system): on the shared machine the wall time carries the other
+    # jobs' load, the CPU time much less of it
+    cpu = sum(float(re.search(rf"{k} time \(seconds\): ([\d.]+)", r.stderr).group(1)) for k in ("User", "System"))
     job = os.path.splitext(os.path.basename(deck))[0]
     steps, stick, slip = [], [], []
     with h5py.File(os.path.join(out, job + ".h5"), "r") as f:
@@ -135,7 +138,7 @@ def run(exe, deck, out):
             for row in csv.DictReader(f):
                 if row.get("phase") == "factorize":
                     fact += float(row.get("seconds", 0.0))
-    return {"dofs": dofs, "wall": secs, "rss": rss, "steps": steps, "stick": stick, "slip": slip, "t_factorize": fact}
+    return {"dofs": dofs, "wall": secs, "cpu": cpu, "rss": rss, "steps": steps, "stick": stick, "slip": slip, "t_factorize": fact}
 
 
 def pair(exe, name, make, work, repeat=1):
@@ -155,9 +158,10 @@ def pair(exe, name, make, work, repeat=1):
     worst = max(f for _, f in fr["steps"])
     print(f"{name}: {dofs} unknowns")
     for tag, r in rows.items():
-        print(f"  {tag:4s} wall {r['wall']:8.2f} s  RSS {r['rss']:7.1f} MB  factorize {r['t_factorize']:7.2f} s  "
+        print(f"  {tag:4s} wall {r['wall']:8.2f} s  cpu {r['cpu']:8.2f} s  RSS {r['rss']:7.1f} MB  factorize {r['t_factorize']:7.2f} s  "
               f"iterations/factorizations per step {r['steps']}  stick {r['stick']} slip {r['slip']}")
-    print(f"  frictional / frictionless wall {fr['wall'] / f0['wall']:.2f}, factorizations "
+    print(f"  frictional / frictionless wall {fr['wall'] / f0['wall']:.2f}, cpu {fr['cpu'] / f0['cpu']:.2f}, "
+          f"factorizations "
           f"{sum(f for _, f in fr['steps'])} / {nf0}, at most {worst} per increment, "
           f"at most {max(i for i, _ in fr['steps'])} iterations")
     return {"model": name, "dofs": dofs, "steps": len(fr["steps"]),
@@ -167,6 +171,8 @@ def pair(exe, name, make, work, repeat=1):
             "max_factorizations_per_increment": worst,
             "wall_mu": round(fr["wall"], 2), "wall_mu0": round(f0["wall"], 2),
             "ratio": round(fr["wall"] / f0["wall"], 2),
+            "cpu_mu": round(fr["cpu"], 2), "cpu_mu0": round(f0["cpu"], 2),
+            "ratio_cpu": round(fr["cpu"] / f0["cpu"], 2),
             "factorize_mu": round(fr["t_factorize"], 2), "factorize_mu0": round(f0["t_factorize"], 2),
             "rss_mu": round(fr["rss"]), "rss_mu0": round(f0["rss"]), "stick": " ".join(map(str, fr["stick"])), "slip": " ".join(map(str, fr["slip"]))}
 

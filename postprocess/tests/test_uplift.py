@@ -292,9 +292,15 @@ def test_pressure_penetration_on_a_frictional_joint(exe, tmp_path, nx):
     assert np.allclose(c["CFLUIDP"][:k], GW * 9.0, rtol=1e-13)
     assert np.allclose(c["CFLUIDP"][k:], GW * 9.0 * (5.0 - x[k:]) / (5.0 - a_fe), rtol=1e-12, atol=1e-9)
     # horizontal equilibrium of the block: the shear resultant is the thrust H, to the
-    # contact iteration's residual (1e-10 of the forces); 1e-8
+    # round-off of the elastic forces.  The bodies are near-rigid (E = 1e13 Pa) and move
+    # by 0.03 m on the penalty springs: the residual's round-off, 1e-16 of (K_max |u|
+    # ~ 3e12 N), is 3e-4 N in norm, and its sum over the block's ~900 dofs up to 1e-2 N,
+    # 2.5e-8 of H (the supports' RF shows the same imbalance against the applied loads).
+    # Measured 5.6e-9, 1.5e-8 and 2.4e-8 on three solution paths that end in the same
+    # stick/slip states (GMRES and Uzawa; the condensed solve with Uzawa; with the
+    # Newton step); 1e-7
     thrust = 0.5 * GW * 9.0**2
-    assert abs(np.sum(c["CSHEAR"] * c["CNAREA"])) == pytest.approx(thrust, rel=1e-8)
+    assert abs(np.sum(c["CSHEAR"] * c["CNAREA"])) == pytest.approx(thrust, rel=1e-7)
     # nodes within the strength: |CSHEAR| <= c + mu CPRESS.  CSHEAR is the force the
     # balance leaves at the node, which meets the law's bound to the iteration's
     # tolerance: measured 4.9e-7 above it at the crack-tip node (nx = 40); 1e-6

@@ -24,6 +24,11 @@ module vemcontact_contact_iteration
    use vemcontact_linalg_gmres, only: linear_operator_t, gmres, gmres_result_t
    use vemcontact_linalg_norms, only: safe_norm2
    use vemcontact_linalg_cg, only: pcg, cg_result_t
+   use vemcontact_contact_condensed, only: compliance_cache_t, woodbury_t, same_pairing, scatter_rows, store_columns, &
+                                           build_woodbury, woodbury_rhs, woodbury_correction, contact_compliance, &
+                                           row_normal, row_tangent
+   use vemcontact_contact_friction, only: tangent_stick, tangent_slip
+   use vemcontact_linalg_lapack, only: dgetrf, dgetrs
    use vemcontact_log, only: logger_t
    use vemcontact_clock, only: wall_time
    use vemcontact_interrupt, only: interrupt_error
@@ -62,6 +67,16 @@ module vemcontact_contact_iteration
    !> On the soft curved master of docs/contact-robustness.md 1e-6 cost two more
    !> iterations (11 against 9), 1e-10 two more GMRES iterations per product than 1e-8
    real(wp), parameter :: multiplier_reduction = 1.0e-8_wp
+   !> The relative residual (residual_norm) a condensed solve must reach, else the
+   !> system is factorized: its refined solves reach the round-off of the direct
+   !> solve, 1e-16 to 1e-14
+   real(wp), parameter :: condensed_tol = 1.0e-12_wp
+   !> ... and below which its first pass needs no refinement (the round-off of the
+   !> residual's evaluation, 1e-17 to 1e-16 on the bench of bench/friction_cost.py)
+   real(wp), parameter :: condensed_refined = 1.0e-15_wp
+   !> Columns of the contact compliance solved together (add_columns): at most
+   !> condensed_block_values numbers per block array, 4 to 64 columns
+   integer, parameter :: condensed_block_values = 16000000, condensed_block_min = 4, condensed_block_max = 64
 
    !> One iteration, as logged and written to the results.
    type :: iteration_record_t
@@ -93,8 +108,18 @@ module vemcontact_contact_iteration
       !> solver's finding that the matrix is not positive definite in floating point)
       logical :: pivot_failed = .false.
       real(wp) :: t_factorize = 0, t_solve = 0, t_search = 0
+      !> of the last solve_contact: the contact compliance columns solved (add_columns)
+      !> and their time (part of t_solve)
+      integer :: columns = 0
+      real(wp) :: t_columns = 0
       type(iteration_record_t), allocatable :: records(:)
+      !> the contact compliance columns computed with the current factor
+      !> (vemcontact_contact_condensed), kept across load states with the factor
+      type(compliance_cache_t) :: cache
    contains
+      !> x(:, c) = A^-1 b(:, c) with the current factor, for every column c (by default
+      !> one solve_system per column; a direct solver solves them together)
+      procedure :: solve_columns
       procedure(contact_matrix_i), deferred :: contact_matrix
       procedure(factorize_i), deferred :: numeric_factorize
       procedure(rcond_i), deferred :: rcond
@@ -244,6 +269,7 @@ contains
       type(logger_t), intent(inout), optional :: log
       type(iteration_state_t) :: s
       character(len=160) :: buf
+      character(len=12) :: tbuf
       integer :: it, sig
       logical :: converged
 
@@ -272,6 +298,12 @@ contains
             if (allocated(error)) return
             call contact%commit_friction()
             call contact%set_balanced(model, s%ku - fext, fixed)
+            if (sys%columns > 0 .and. present(log)) then
+               write (tbuf, '(f12.3)') sys%t_columns
+               write (buf, '(a,i0,a)') '  contact compliance: ', sys%columns, &
+                  ' columns solved with the factor in '//trim(adjustl(tbuf))//' s'
+               call log%say(trim(buf))
+            end if
             call report_slid_off(s, model, contact, log)
             return
          end if
@@ -309,6 +341,8 @@ contains
       sys%refactorized = .false.
       sys%t_factorize = 0
       sys%t_solve = 0
+      sys%columns = 0
+      sys%t_columns = 0
       s%op%sys => sys
       s%op%contact => contact
       s%op%fixed => fixed
@@ -342,7 +376,7 @@ contains
       type(contact_state_t), intent(inout) :: contact
       type(error_t), allocatable, intent(out) :: error
       type(logger_t), intent(inout), optional :: log
-      logical :: same_matrix, same_pattern, solved, coupled
+      logical :: same_matrix, same_pattern, solved, coupled, condensed
       real(wp) :: t0
       call sys%contact_matrix(model, contact, u, fixed, prescribed, fext, s%f, s%rebuilt, error)
       if (allocated(error)) return
@@ -361,7 +395,17 @@ contains
       same_matrix = same_pattern
       if (same_matrix) same_matrix = same_key(sys%factored_key, contact)
       solved = .false.
-      if (same_pattern .and. .not. same_matrix) then
+      ! friction with the factor's pairing: the springs and states differ from the
+      ! factor's by low-rank terms, solved exactly on the contact space
+      ! (condensed_solve)
+      condensed = contact%fric%on .and. .not. s%op%sliding
+      if (condensed .and. same_pattern) then
+         if (same_pairing(sys%factored_key, contact)) then
+            call condensed_solve(s, sys, fixed, fext, u, contact, solved, error)
+            if (allocated(error)) return
+         end if
+      end if
+      if (.not. solved .and. same_pattern .and. .not. same_matrix) then
          ! a small move of the pairing, or a few stick/slip changes alone
          if (near_key(sys%factored_key, contact, pairing_drift) .or. &
              flips_within(stick_flips(sys%factored_key, contact), max_stick_flips)) then
@@ -376,6 +420,10 @@ contains
          if (allocated(error)) return
          s%t_fact = wall_time() - t0
          sys%t_factorize = sys%t_factorize + s%t_fact
+         if (condensed) then
+            call condensed_solve(s, sys, fixed, fext, u, contact, solved, error)
+            if (allocated(error)) return
+         end if
       end if
       ! the unsymmetric parts the factor lacks (the sliding of the pairing, slipping
       ! friction whose force follows the normal force): GMRES with the factor
@@ -475,7 +523,8 @@ contains
       type(contact_state_t), intent(inout), target :: contact
       type(error_t), allocatable, intent(out) :: error
       real(wp) :: overclosure, change, tchange, elastic_slip
-      real(wp), allocatable :: noise(:), dlam(:)
+      real(wp), allocatable :: noise(:), dlam(:), lambda0(:)
+      logical :: newton
       converged = .false.
       if (s%nchanged == 0 .and. (contact%has_hard() .or. contact%has_exact_friction())) then
          overclosure = 0.0_wp
@@ -485,7 +534,19 @@ contains
          ! times the residual force left by the solve is its round-off (on the dam, K =
          ! 1e13 Pa/m, the exact-stick updates settled at 2.5e-5 N of 1e5 N, the size of
          ! the residual, and would never stop)
+         lambda0 = contact%fric%lambda
          call contact%augment_friction(4.0_wp*maxval(abs(s%r)), tchange, elastic_slip)
+         ! where the frozen systems are solved on the contact space, the multipliers of
+         ! both take a Newton step there instead (contact_newton)
+         allocate (dlam(contact%n))
+         noise = contact%gap_noise(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
+                                   16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), &
+                                   128.0_wp*min(maxval(abs(s%r)), epsilon(1.0_wp)*s%kmax*maxval(abs(u))))
+         newton = condensed_applies(s, sys, fixed, contact)
+         if (newton) then
+            call contact_newton(sys, fixed, contact, lambda0, noise, dlam, newton, error)
+            if (allocated(error)) return
+         end if
          if (.not. contact%has_hard()) then
             converged = s%nslip == 0 .and. s%rel <= model%controls%residual_tol .and. &
                         elastic_slip <= model%controls%overclosure_tol .and. tchange <= model%controls%residual_tol
@@ -505,12 +566,10 @@ contains
          ! updates only stir.
          ! Where the pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE) the matrix
          ! then holds and only the right-hand side changes.
-         allocate (dlam(contact%n))
-         noise = contact%gap_noise(16.0_wp*epsilon(1.0_wp)*maxval(abs(u)), &
-                                   16.0_wp*epsilon(1.0_wp)*maxval(abs(model%x)), &
-                                   128.0_wp*min(maxval(abs(s%r)), epsilon(1.0_wp)*s%kmax*maxval(abs(u))))
-         call multiplier_step(sys, contact, fixed, noise, dlam, error)
-         if (allocated(error)) return
+         if (.not. newton) then
+            call multiplier_step(sys, contact, fixed, noise, dlam, error)
+            if (allocated(error)) return
+         end if
          call contact%augment(noise, dlam, overclosure, change)
          converged = s%nslip == 0 .and. s%rel <= model%controls%residual_tol .and. &
                      overclosure <= model%controls%overclosure_tol .and. change <= model%controls%residual_tol .and. &
@@ -727,6 +786,245 @@ contains
       ok = res%converged
    end subroutine krylov_solve
 
+   !> x = u0 + dx with J dx = r(u0) solved exactly with the current factor K0 of
+   !> another tangential state of the same pairing (vemcontact_contact_condensed):
+   !> the columns K0^-1 t_i of the entries that differ from K0 come from the cache
+   !> (computed once per factor), then two solves by K0 and the capacitance give dx;
+   !> one pass of refinement on the frozen residual, as direct_solve, unless the
+   !> first left only round-off (condensed_refined).  ok false
+   !> (x undefined) when the capacitance is singular or the refined residual is not
+   !> at the solve's round-off (condensed_tol).
+   subroutine condensed_solve(s, sys, fixed, fext, x, contact, ok, error)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout) :: sys
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: fext(:)
+      real(wp), intent(inout) :: x(:)
+      type(contact_state_t), intent(in) :: contact
+      logical, intent(out) :: ok
+      type(error_t), allocatable, intent(out) :: error
+      type(woodbury_t) :: wb
+      real(wp), allocatable :: w(:), g(:), z(:)
+      real(wp) :: t0, rel
+      integer :: pass
+      t0 = wall_time()
+      call prepare_woodbury(sys, fixed, contact, wb, ok, error)
+      if (allocated(error) .or. .not. ok) return
+      x = s%u0
+      allocate (w(size(x)), z(wb%r))
+      do pass = 1, 2
+         call frozen_residual(s, sys, fixed, fext, x, contact, rel)
+         ! the refinement only where the first solve left more than its round-off
+         if (pass == 2 .and. rel <= condensed_refined) exit
+         w = 0.0_wp
+         call sys%solve_system(s%r, w, error)
+         if (allocated(error)) return
+         call woodbury_rhs(wb, contact, fixed, w, z)
+         g = s%r
+         call woodbury_correction(wb, contact, fixed, z, g)
+         where (fixed) g = 0.0_wp
+         w = 0.0_wp
+         call sys%solve_system(g, w, error)
+         if (allocated(error)) return
+         where (fixed) w = 0.0_wp
+         x = x + w
+      end do
+      sys%t_solve = sys%t_solve + (wall_time() - t0)
+      call frozen_residual(s, sys, fixed, fext, x, contact, rel)
+      ok = all(abs(x) <= huge(1.0_wp)) .and. rel <= condensed_tol
+   end subroutine condensed_solve
+
+   !> The low-rank difference between the frozen tangent of `contact` and the
+   !> current factor, with the columns it needs added to the cache (add_columns)
+   !> and its capacitance factored; ok false when the capacitance is singular.
+   subroutine prepare_woodbury(sys, fixed, contact, wb, ok, error)
+      class(contact_system_t), intent(inout) :: sys
+      logical, intent(in) :: fixed(:)
+      type(contact_state_t), intent(in) :: contact
+      type(woodbury_t), intent(out) :: wb
+      logical, intent(out) :: ok
+      type(error_t), allocatable, intent(out) :: error
+      logical, allocatable :: need(:, :)
+      if (.not. allocated(sys%cache%col)) call sys%cache%reset(contact%n)
+      allocate (need(2, contact%n))
+      call build_woodbury(sys%factored_key, contact, sys%cache, wb, need, .false., ok)
+      call add_columns(sys, fixed, contact, need, error)
+      if (allocated(error)) return
+      call build_woodbury(sys%factored_key, contact, sys%cache, wb, need, .true., ok)
+   end subroutine prepare_woodbury
+
+   !> The cache gains the columns K0^-1 b_{i,d} of the rows `need(d, i)` that it lacks,
+   !> solved together in blocks of at most condensed_block_values / n columns (the
+   !> right-hand sides and solutions of a block are two n x block arrays).
+   subroutine add_columns(sys, fixed, contact, need, error)
+      class(contact_system_t), intent(inout) :: sys
+      logical, intent(in) :: fixed(:)
+      type(contact_state_t), intent(in) :: contact
+      logical, intent(in) :: need(:, :)
+      type(error_t), allocatable, intent(out) :: error
+      integer, allocatable :: list(:, :)
+      real(wp), allocatable :: b(:, :), z(:, :)
+      integer :: first, last, block
+      real(wp) :: t0
+      t0 = wall_time()
+      list = sys%cache%missing(need)
+      block = max(condensed_block_min, min(condensed_block_max, condensed_block_values/max(1, size(fixed))))
+      do first = 1, size(list, 2), block
+         last = min(size(list, 2), first + block - 1)
+         allocate (b(size(fixed), last - first + 1), z(size(fixed), last - first + 1))
+         call scatter_rows(contact, fixed, list(:, first:last), b)
+         call sys%solve_columns(b, z, error)
+         if (allocated(error)) return
+         call store_columns(sys%cache, contact, fixed, list(:, first:last), z)
+         deallocate (b, z)
+      end do
+      sys%columns = sys%columns + size(list, 2)
+      sys%t_columns = sys%t_columns + (wall_time() - t0)
+   end subroutine add_columns
+
+   !> x(:, c) = A^-1 b(:, c), one solve_system per column.
+   subroutine solve_columns(self, b, x, error)
+      class(contact_system_t), intent(inout) :: self
+      real(wp), intent(in) :: b(:, :)
+      real(wp), intent(out) :: x(:, :)
+      type(error_t), allocatable, intent(out) :: error
+      integer :: c
+      do c = 1, size(b, 2)
+         x(:, c) = 0.0_wp
+         call self%solve_system(b(:, c), x(:, c), error)
+         if (allocated(error)) return
+      end do
+   end subroutine solve_columns
+
+   !> The multipliers' Newton step on the contact space, where the condensed solve
+   !> applies (condensed_applies): the normal multipliers of the HARD entries
+   !> (multiplier_entries) and the tangential ones of the sticking entries of exact
+   !> laws, so that the next solve, if the states hold, leaves no gap and no elastic
+   !> slip.  A change dlam_N of a normal multiplier loads the right-hand side with
+   !> dlam_N (n - dT/dN t) (a slipping entry's force follows its normal force), one
+   !> dlam_T of a tangential one with -dlam_T t; with the compliance H = B J^-1 B^T of
+   !> the contact rows under the frozen tangent J (contact_compliance) the gaps and
+   !> elastic slips move linearly, and one dense system gives both steps.  The
+   !> plain Uzawa updates divide the error of a mode by 1 + k c (c its compliance)
+   !> and ignore the coupling of gaps and slips through the bodies.  Gaps within
+   !> `noise` count as zero, as in multiplier_step.  Returns dlam (the normal step,
+   !> for augment) and sets the tangential multipliers to lambda0 + dlam_T; ok false
+   !> (nothing set) when the system is singular.
+   subroutine contact_newton(sys, fixed, contact, lambda0, noise, dlam, ok, error)
+      class(contact_system_t), intent(inout) :: sys
+      logical, intent(in) :: fixed(:)
+      type(contact_state_t), intent(inout) :: contact
+      real(wp), intent(in) :: lambda0(:), noise(:)
+      real(wp), intent(out) :: dlam(:)
+      logical, intent(out) :: ok
+      type(error_t), allocatable, intent(out) :: error
+      type(woodbury_t) :: wb
+      logical, allocatable :: rows(:, :), slipping(:)
+      integer, allocatable :: list(:, :), ipiv(:)
+      real(wp), allocatable :: h(:, :), y(:)
+      integer :: i, p, m, info
+      real(wp) :: t0, hmax
+      dlam = 0.0_wp
+      t0 = wall_time()
+      call newton_rows(contact, rows, slipping)
+      ok = .true.
+      if (.not. any(rows)) return
+      call prepare_woodbury(sys, fixed, contact, wb, ok, error)
+      if (allocated(error) .or. .not. ok) return
+      ! the rows, then the tangential rows of the slipping HARD entries (their loads)
+      m = count(rows)
+      allocate (list(2, m + count(slipping)), y(m))
+      p = 0
+      do i = 1, contact%n
+         if (rows(row_normal, i)) then
+            p = p + 1
+            list(:, p) = [row_normal, i]
+            y(p) = merge(-contact%gap(i), 0.0_wp, abs(contact%gap(i)) > noise(i))
+         end if
+         if (rows(row_tangent, i)) then
+            p = p + 1
+            list(:, p) = [row_tangent, i]
+            y(p) = -(contact%fric%slip(i) - contact%fric%anchor(i))
+         end if
+      end do
+      do i = 1, contact%n
+         if (.not. slipping(i)) cycle
+         p = p + 1
+         list(:, p) = [row_tangent, i]
+         rows(row_tangent, i) = .true.
+      end do
+      call add_columns(sys, fixed, contact, rows, error)
+      if (allocated(error)) return
+      allocate (h(p, p), ipiv(m))
+      call contact_compliance(wb, sys%cache, list, h)
+      ! a slipping entry's normal load n - dT/dN t
+      do p = m + 1, size(list, 2)
+         i = list(2, p)
+         m = findloc(list(2, 1:count(rows) - count(slipping)), i, 1)
+         h(:, m) = h(:, m) - contact%fric%dnormal(i)*h(:, p)
+      end do
+      m = count(rows) - count(slipping)
+      h = h(1:m, 1:m)
+      ! the rows of entries whose dofs are all fixed: the solve cannot move their gaps
+      ! or slips (their multipliers stay)
+      hmax = 0.0_wp
+      do p = 1, m
+         hmax = max(hmax, abs(h(p, p)))
+      end do
+      do p = 1, m
+         if (abs(h(p, p)) > epsilon(1.0_wp)*hmax) cycle
+         h(p, :) = 0.0_wp
+         h(:, p) = 0.0_wp
+         h(p, p) = 1.0_wp
+         y(p) = 0.0_wp
+      end do
+      call dgetrf(m, m, h, m, ipiv, info)
+      if (info == 0) call dgetrs('N', m, 1, h, m, ipiv, y, m, info)
+      ok = info == 0 .and. all(abs(y) <= huge(1.0_wp))
+      sys%t_solve = sys%t_solve + (wall_time() - t0)
+      if (.not. ok) return
+      do p = 1, m
+         i = list(2, p)
+         if (list(1, p) == row_normal) then
+            dlam(i) = y(p)
+         else
+            contact%fric%lambda(i) = lambda0(i) - y(p)
+         end if
+      end do
+   end subroutine contact_newton
+
+   !> The rows of the multipliers' Newton step (contact_newton): rows(row_normal, i)
+   !> for the HARD entries' normal multipliers, rows(row_tangent, i) for the sticking
+   !> entries of exact laws; `slipping` marks the HARD entries whose force follows
+   !> their normal force.
+   subroutine newton_rows(contact, rows, slipping)
+      type(contact_state_t), intent(in) :: contact
+      logical, allocatable, intent(out) :: rows(:, :), slipping(:)
+      integer :: i
+      allocate (rows(2, contact%n), slipping(contact%n))
+      rows(row_normal, :) = contact%multiplier_entries()
+      do i = 1, contact%n
+         rows(row_tangent, i) = contact%active(i) .and. contact%iseg(i) > 0 .and. &
+                                contact%fric%state(i) == tangent_stick
+         if (rows(row_tangent, i)) rows(row_tangent, i) = contact%fric%laws(contact%pair(i))%law%exact()
+         slipping(i) = rows(row_normal, i) .and. contact%fric%state(i) == tangent_slip .and. &
+                       abs(contact%fric%dnormal(i)) > 0.0_wp
+      end do
+   end subroutine newton_rows
+
+   !> Whether the frozen systems of `contact` are solved on the contact space with
+   !> the current factor (condensed_solve, contact_newton): friction, the factor's
+   !> fixed dofs and pattern, the pairing fixed since the factor.
+   logical function condensed_applies(s, sys, fixed, contact) result(applies)
+      type(iteration_state_t), intent(in) :: s
+      class(contact_system_t), intent(in) :: sys
+      logical, intent(in) :: fixed(:)
+      type(contact_state_t), intent(in) :: contact
+      applies = contact%fric%on .and. sys%factored .and. .not. s%rebuilt .and. .not. contact%has_sliding()
+      if (applies) applies = .not. any(fixed .neqv. sys%factored_fixed)
+      if (applies) applies = same_pairing(sys%factored_key, contact)
+   end function condensed_applies
+
    !> Numeric factorization of the current matrix, with its conditioning judged.
    subroutine factorize(s, sys, fixed, contact, error, log)
       type(iteration_state_t), intent(inout) :: s
@@ -751,6 +1049,7 @@ contains
       end if
       sys%factorizations = sys%factorizations + 1
       sys%factored = .true.
+      call sys%cache%reset(contact%n)
       sys%factored_fixed = fixed
       sys%factored_key = key_of(contact)
       sys%refactorized = .true.

@@ -99,6 +99,7 @@ module vemcontact_driver_linear
       procedure :: numeric_factorize
       procedure :: rcond
       procedure :: solve_system
+      procedure :: solve_columns
       procedure :: elastic_times
       procedure :: largest_elastic_diagonal
       procedure :: reduce_loads
@@ -482,6 +483,16 @@ contains
       type(error_t), allocatable, intent(out) :: error
       call self%solver%solve(f, u, error)
    end subroutine solve_system
+
+   !> Several right-hand sides with the current factor at once (a direct solver's
+   !> blocked solve).
+   subroutine solve_columns(self, b, x, error)
+      class(linear_system_t), intent(inout) :: self
+      real(wp), intent(in) :: b(:, :)
+      real(wp), intent(out) :: x(:, :)
+      type(error_t), allocatable, intent(out) :: error
+      call self%solver%solve(b, x, error)
+   end subroutine solve_columns
 
    subroutine elastic_times(self, u, ku)
       class(linear_system_t), intent(in) :: self

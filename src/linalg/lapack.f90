@@ -4,7 +4,7 @@ module vemcontact_linalg_lapack
    implicit none
    private
 
-   public :: dsyev
+   public :: dsyev, dgetrf, dgetrs
 
    interface
       !> Eigenvalues (ascending) and optionally eigenvectors of a real symmetric matrix.
@@ -16,5 +16,22 @@ module vemcontact_linalg_lapack
          real(wp), intent(out) :: w(*), work(*)
          integer, intent(out) :: info
       end subroutine dsyev
+      !> LU factorization with partial pivoting of a general matrix.
+      pure subroutine dgetrf(m, n, a, lda, ipiv, info)
+         import :: wp
+         integer, intent(in) :: m, n, lda
+         real(wp), intent(inout) :: a(lda, *)
+         integer, intent(out) :: ipiv(*), info
+      end subroutine dgetrf
+      !> Solve with the LU factors of dgetrf.
+      pure subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+         import :: wp
+         character, intent(in) :: trans
+         integer, intent(in) :: n, nrhs, lda, ldb
+         real(wp), intent(in) :: a(lda, *)
+         integer, intent(in) :: ipiv(*)
+         real(wp), intent(inout) :: b(ldb, *)
+         integer, intent(out) :: info
+      end subroutine dgetrs
    end interface
 end module vemcontact_linalg_lapack

@@ -1,0 +1,79 @@
+"""The frictional contact iteration solved on the contact space (issue 23, "Cost" and
+"Robustness"; docs/contact-formulation.md, "Solving the frictional system").
+
+With friction, a frozen system whose pairing is that of the current factor is solved
+exactly with that factor and a low-rank (Woodbury) correction of the springs and
+stick/slip states that changed since, and the multipliers of HARD and of exact stick
+take a Newton step on the contact compliance.  On the block of bench/friction_cost.py
+(pressed, then pushed in 4 steps of one increment each from stick to slip everywhere)
+that makes a stick/slip change or an active-set change cost no numeric factorization,
+and an increment whose states hold converge in 2-3 iterations (measured at 4000
+unknowns: 2, 3, 2, 6, 4 iterations and one factorization in the whole run; the
+plain Uzawa updates with GMRES took 5, 6, 5, 9, 8 and 0-2 factorizations per step).
+The answers are checked by equilibrium, which the solve does not use: the contact
+forces balance the reactions of the supports.
+"""
+import subprocess
+
+import h5py
+import numpy as np
+
+from h5results import iteration_records
+from test_friction_cutback import bench_module
+
+
+def run(exe, path, out):
+    r = subprocess.run([exe, "-q", "-o", str(out), str(path)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    return out / (path.stem + ".h5")
+
+
+def block(exe, tmp_path, friction):
+    bench = bench_module()
+    path = tmp_path / ("block.inp" if friction else "block0.inp")
+    bench.block_deck(str(path), 4000, 4, friction)
+    # the reactions too, for the equilibrium checks
+    path.write_text(path.read_text().replace("*NODE FILE\nU\n", "*NODE FILE\nU, RF\n"))
+    return bench, run(exe, path, tmp_path / ("out" if friction else "out0"))
+
+
+def test_increments_cost_no_factorization(exe, tmp_path):
+    """Every increment within 10 iterations and 2 numeric factorizations (the issue's
+    targets), the frictional run no more factorizations in all than the same model
+    frictionless (measured: 1 against 2), and the increments whose active set and
+    stick/slip states hold (steps 1-3: pressing, then the first pushes) within 4
+    iterations: the Newton step on the contact compliance (measured 2-3; Uzawa took
+    5-6)."""
+    _, h5 = block(exe, tmp_path, True)
+    _, h50 = block(exe, tmp_path, False)
+    records = iteration_records(h5)
+    records0 = iteration_records(h50)
+    assert len(records) == len(records0) == 5
+    iterations = [int(r["iteration"].size) for r in records]
+    factorized = [int(r["factorized"].sum()) for r in records]
+    assert max(iterations) <= 10, iterations
+    assert max(factorized) <= 2, factorized
+    assert sum(factorized) <= sum(int(r["factorized"].sum()) for r in records0), factorized
+    assert max(iterations[:3]) <= 4, iterations
+
+
+def test_contact_forces_balance_the_supports(exe, tmp_path):
+    """In every step the shear the joint carries, sum CSHEAR x CNAREA, is the push's
+    reaction at the top (TOP's RF along x) and the normal force is the pressure on the
+    top, 10 x 2; in the last step the whole joint slips at mu times it.  1e-10 relative:
+    the iterations' residual tolerance (measured 1e-13)."""
+    bench, h5 = block(exe, tmp_path, True)
+    load = bench.PRESSURE * 2.0
+    with h5py.File(h5, "r") as f:
+        keys = sorted(f["steps"])
+        for key in keys:
+            g = f[f"steps/{key}"]
+            names = [n.decode() if isinstance(n, bytes) else str(n) for n in g["RF_sets/names"][()]]
+            rf_top = g["RF_sets/RF"][()][names.index("TOP")]
+            c = g["contact/pair_1"]
+            area = np.array(c["CNAREA"])
+            shear = (np.array(c["CSHEAR"]) * area).sum()
+            normal = (np.array(c["CPRESS"]) * area).sum()
+            assert abs(normal - load) <= 1e-10 * load, (key, normal)
+            assert abs(shear - rf_top[0]) <= 1e-10 * load, (key, shear, rf_top)
+        assert abs(shear - bench.MU * load) <= 1e-10 * load, shear
