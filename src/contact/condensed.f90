@@ -13,7 +13,7 @@
 !> with n_i = n.A(xi), t_i = t.A(xi) the entry's normal and tangential rows (zero at
 !> the fixed dofs) and the 2 x 2 matrix M_i: the change of the normal spring (k now
 !> if active, minus k of the key if active then), of the tangential spring (kt if
-!> it sticks now, minus kt if it stuck then) and, for a slipping entry, -dT/dN k
+!> it sticks now, minus the key's kt if it stuck then) and, for a slipping entry, -dT/dN k
 !> in the row of t and the column of n (its force follows its normal force: the
 !> unsymmetric part).  Each nonzero row d of M_i is a column b_{i,d} of U and the
 !> row M_i(d, :) [n_i t_i]^T of V^T (r pairs in all), and the Sherman-Morrison-
@@ -225,8 +225,9 @@ contains
          on = contact%active(i)
          was = key%active(i)
          m(1, 1, i) = merge(contact%k(i), 0.0_wp, on) - merge(key%k(i), 0.0_wp, was)
-         m(2, 2, i) = contact%fric%kt(i)*(merge(1.0_wp, 0.0_wp, on .and. contact%fric%state(i) == tangent_stick) - &
-                                          merge(1.0_wp, 0.0_wp, was .and. key%stick(i)))
+         ! the key's own springs: a *CHANGE FRICTION between them changes kt
+         m(2, 2, i) = merge(contact%fric%kt(i), 0.0_wp, on .and. contact%fric%state(i) == tangent_stick) - &
+                      merge(key%kt(i), 0.0_wp, was .and. key%stick(i))
          if (on .and. contact%fric%state(i) == tangent_slip) m(2, 1, i) = -contact%fric%dnormal(i)*contact%k(i)
       end do
       need = abs(m(:, 1, :)) > 0.0_wp .or. abs(m(:, 2, :)) > 0.0_wp
