@@ -218,6 +218,9 @@ module vemcontact_contact_iteration
       real(wp) :: t_iter = 0.0_wp, t_fact = 0.0_wp, t_srch = 0.0_wp
       logical :: warned = .false.         !< the ill-conditioning warning was given
       logical :: settled = .false.        !< the last update changed no entry
+      !> the active set has held once in this load state (finite sliding: Newton steps
+      !> on the pairing from then on)
+      logical :: newton = .false.
       logical :: rebuilt = .false.        !< the last matrix needed a new pattern
       logical, allocatable :: history(:, :), held(:)
       !> entries kept closed after a cycle between open and closed (pin_cycle)
@@ -386,7 +389,8 @@ contains
       ! Newton on the pairing once the active set holds: the tangent carries the
       ! part of finite sliding (sliding_tangent), which the factor lacks: GMRES with
       ! the factor as preconditioner solves with it
-      s%op%sliding = s%settled .and. contact%has_sliding()
+      s%newton = s%newton .or. s%settled
+      s%op%sliding = s%newton .and. contact%has_sliding()
       ! the matrix of the current factor: solve again without factorizing; a
       ! matrix that differs from it only by a small move of the pairing: the old
       ! factor as the preconditioner
