@@ -856,7 +856,11 @@ contains
       op%contact => contact
       op%fixed => fixed
       op%mask = contact%multiplier_entries()
-      op%sliding = contact%has_sliding()
+      ! with friction on a finite-sliding pair the compliance of the factor, as
+      ! where the pairing is fixed: with the sliding part (which leaves out the k c
+      ! term of frictional HARD entries, sliding_c) the updates converged by a tenth per
+      ! iteration on the inclined block (15 iterations against 12)
+      op%sliding = contact%has_sliding() .and. .not. contact%has_sliding_friction()
       ! -g, without the gaps within their round-off
       b = merge(-contact%gap, 0.0_wp, op%mask .and. abs(contact%gap) > noise)
       call pcg(op, b, noise, multiplier_cg_limit, dlam, res, error)
