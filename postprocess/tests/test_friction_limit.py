@@ -2,7 +2,7 @@
 up an inclined joint (the NAFEMS CGS-4 form, F2 of the friction anchors) and the same
 block on a Mohr-Coulomb joint with cohesion, NODE TO SURFACE (CPE4 and VPE sides) and
 SURFACE TO SURFACE (VPE sides), exact stick and a stick slope.  (Friction with the finite
-sliding of NODE TO SURFACE: test_friction_finite.py.)
+sliding of NODE TO SURFACE is refused with a message: the last test.)
 
 A base [0, 4] wide, from y = -1 up to the joint y = x tan(a), tan(a) = 0.1, held at
 its bottom; on it a block over 1 <= x <= 3, one unit high above the joint (vertical
@@ -112,6 +112,18 @@ def test_push_up_incline(exe, tmp_path, case, cohesion):
     expected = limit_force(cohesion * area.sum())
     assert abs(force / expected - 1.0) <= 1e-6, (force, expected)
     assert max(iterations) <= 10, iterations
+
+
+def test_finite_sliding_refused(exe, tmp_path):
+    """*FRICTION on a NODE TO SURFACE pair without SMALL SLIDING: one message naming
+    the pair's file:line and the remedy, exit 1, no results."""
+    path, _ = deck(tmp_path, "finite", "CPE4", "NODE TO SURFACE", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD",
+                   f"*FRICTION\n{float(MU)!r}")
+    r = subprocess.run([exe, "-q", "-o", str(tmp_path / "o"), str(path)], capture_output=True, text=True)
+    assert r.returncode == 1
+    assert "friction (*FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING" in r.stderr
+    assert "finite.inp:" in r.stderr and r.stderr.count("error:") == 1
+    assert not list((tmp_path / "o").glob("*.h5")) if (tmp_path / "o").exists() else True
 
 
 def pad_deck(tmp_path, friction):

@@ -292,6 +292,12 @@ contains
    !> The tangential law of every pair and the tangential spring of every entry: the
    !> stick slope times the tributary area, or for exact stick the augmentation
    !> stiffness of HARD (hard_stiffness E/h, scaled by STIFFNESS SCALE FACTOR).
+   !> Friction with the finite sliding of NODE TO SURFACE is refused: its slip
+   !> kinematics are in place (the arc length along the master, sliding_terms, and the
+   !> tangential force's sliding tangent, tangential_sliding), but the iteration does
+   !> not converge robustly with them yet (docs/contact-formulation.md, "Friction",
+   !> the numbers: more than 10 iterations with HARD, and a slide of 1.8 master segments
+   !> in one increment opened the whole contact).
    subroutine init_friction(self, model, error)
       type(contact_state_t), intent(inout) :: self
       type(model_t), intent(in) :: model
@@ -304,6 +310,14 @@ contains
          associate (it => model%interactions(model%pairs(p)%interaction))
             call make_law(it%has_friction, it%rough, it%mu, it%stick_slope, it%cohesion, self%fric%laws(p))
          end associate
+         if (self%fric%laws(p)%law%frictional() .and. .not. self%pairs(p)%small_sliding) then
+            call append_message(error, location_string(model, model%pairs(p)%loc)//': error: friction '// &
+                                '(*FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING'//new_line('a')// &
+                                '  = help: write *CONTACT PAIR, INTERACTION=..., TYPE=NODE TO SURFACE, SMALL '// &
+                                'SLIDING (the pairing of the undeformed state, kept), or TYPE=SURFACE TO '// &
+                                'SURFACE; vemcontact does not combine friction with finite sliding', err_input)
+            cycle
+         end if
          slope(p) = self%fric%laws(p)%law%stick_slope()
          if (self%fric%laws(p)%law%exact() .and. self%pairs(p)%nslave > 0) then
             slope(p) = hard_stiffness*model%controls%stiffness_scale*self%pairs(p)%stiffness/ &
