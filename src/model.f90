@@ -10,7 +10,7 @@ module vemcontact_model
    public :: model_t, named_set_t, material_t, section_t, step_t
    public :: dof_value_t, dload_t, string_t, source_loc_t
    public :: surface_t, interaction_t, contact_pair_t, contact_controls_t, output_request_t
-   public :: uplift_t, strength_reduction_t
+   public :: uplift_t, strength_reduction_t, friction_change_t
    public :: find_set, location_string, output_requested, element_order, element_side
    public :: amplitude_t
    public :: equation_t, tie_t
@@ -280,6 +280,9 @@ module vemcontact_model
       real(wp) :: fluid_pressure = 0.0_wp     !< the fluid pressure p
       !> a node is open to the fluid while its contact pressure is at or below this
       real(wp) :: critical_pressure = 0.0_wp
+      !> the part of the water pressure in force: below 1 within a ramped step that
+      !> brings this uplift in (the driver's load increments)
+      real(wp) :: factor = 1.0_wp
       type(source_loc_t) :: loc
    end type uplift_t
 
@@ -299,6 +302,18 @@ module vemcontact_model
       !> instead of probing the estimate of the trial at F = 1
       logical :: first_given = .false.
    end type strength_reduction_t
+
+   !> A step's *CHANGE FRICTION: interaction `interaction` takes the tangential law
+   !> of the *FRICTION that follows it (the fields as in interaction_t) from this
+   !> step on.
+   type :: friction_change_t
+      integer :: interaction = 0
+      logical :: rough = .false.
+      real(wp) :: mu = 0.0_wp
+      real(wp) :: stick_slope = 0.0_wp
+      real(wp) :: cohesion = 0.0_wp
+      type(source_loc_t) :: loc
+   end type friction_change_t
 
    !> One *STEP.  Loads follow CalculiX: with OP=MOD (default) a step's entries
    !> replace those of earlier steps on the same dof/element and keep the rest;
@@ -332,6 +347,8 @@ module vemcontact_model
       !> *INITIAL CONDITIONS, TYPE=TEMPERATURE (the reference temperature T0)
       type(dof_value_t), allocatable :: temperature(:)
       logical :: temperature_new = .false.   !< *TEMPERATURE, OP=NEW: back to T0 first
+      !> *CHANGE FRICTION of the step, in deck order
+      type(friction_change_t), allocatable :: friction_changes(:)
       !> the output requests in force in this step: those of the step, and for each
       !> category (node, element, contact) and kind (file, print) without a request in
       !> the step those of the step before (CalculiX: the first request of a kind in a

@@ -31,7 +31,7 @@ module vemcontact_contact_active_set
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_contact_spring, only: spring_t
    use vemcontact_contact_table, only: contact_table_t
-   use vemcontact_contact_tangential, only: friction_state_t, make_law
+   use vemcontact_contact_tangential, only: friction_state_t, make_law, friction_params_t
    use vemcontact_contact_friction, only: tangent_stick, tangent_slip, tangential_response_t
    use vemcontact_contact_master_arc, only: master_arcs
    implicit none
@@ -191,6 +191,7 @@ module vemcontact_contact_active_set
       procedure :: add_tension
       procedure :: augment_friction
       procedure :: commit_friction
+      procedure :: change_friction
       procedure :: has_exact_friction
       procedure :: tangential_line_terms
       procedure :: count_state
@@ -302,13 +303,13 @@ contains
       type(contact_state_t), intent(inout) :: self
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: error
-      real(wp), allocatable :: slope(:)
-      integer :: p, i
-      allocate (self%fric%laws(size(self%pairs)), slope(size(self%pairs)))
+      integer :: p
+      allocate (self%fric%laws(size(self%pairs)), self%fric%params(size(self%pairs)))
       call self%fric%allocate_entries(self%n)
       do p = 1, size(self%pairs)
          associate (it => model%interactions(model%pairs(p)%interaction))
-            call make_law(it%has_friction, it%rough, it%mu, it%stick_slope, it%cohesion, self%fric%laws(p))
+            call set_pair_law(self, model, p, friction_params_t(it%has_friction, it%rough, it%mu, &
+                                                                it%stick_slope, it%cohesion))
          end associate
          if (self%fric%laws(p)%law%frictional() .and. .not. self%pairs(p)%small_sliding) then
             call append_message(error, location_string(model, model%pairs(p)%loc)//': error: friction '// &
@@ -316,26 +317,78 @@ contains
                                 '  = help: write *CONTACT PAIR, INTERACTION=..., TYPE=NODE TO SURFACE, SMALL '// &
                                 'SLIDING (the pairing of the undeformed state, kept), or TYPE=SURFACE TO '// &
                                 'SURFACE; vemcontact does not combine friction with finite sliding', err_input)
-            cycle
          end if
-         slope(p) = self%fric%laws(p)%law%stick_slope()
-         if (self%fric%laws(p)%law%exact() .and. self%pairs(p)%nslave > 0) then
-            slope(p) = hard_stiffness*model%controls%stiffness_scale*self%pairs(p)%stiffness/ &
-                       (median_length(model, self%pairs(p)%seg)* &
-                        maxval(self%thick(self%pairs(p)%first + 1:self%pairs(p)%first + self%pairs(p)%nslave), &
-                               mask=self%thick(self%pairs(p)%first + 1:self%pairs(p)%first + self%pairs(p)%nslave) &
-                               > 0.0_wp))
-         end if
-         if (self%fric%laws(p)%law%frictional()) then
-            self%fric%on = .true.
-            self%fric%exact = self%fric%exact .or. self%fric%laws(p)%law%exact()
-         end if
-      end do
-      do i = 1, self%n
-         if (self%fric%laws(self%pair(i))%law%frictional()) &
-            self%fric%kt(i) = slope(self%pair(i))*self%length(i)*self%thick(i)
       end do
    end subroutine init_friction
+
+   !> Pair p's tangential law from `params`, its entries' tangential springs (the
+   !> stick slope times the tributary area, or for exact stick the augmentation
+   !> stiffness of HARD, hard_stiffness E/h scaled by STIFFNESS SCALE FACTOR), and
+   !> whether some pair is frictional (fric%on) or sticks exactly (fric%exact).
+   subroutine set_pair_law(self, model, p, params)
+      type(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: p
+      type(friction_params_t), intent(in) :: params
+      real(wp) :: slope
+      integer :: i, q
+      self%fric%params(p) = params
+      call make_law(params%has_friction, params%rough, params%mu, params%slope, params%cohesion, self%fric%laws(p))
+      slope = self%fric%laws(p)%law%stick_slope()
+      associate (first => self%pairs(p)%first, ns => self%pairs(p)%nslave)
+         if (self%fric%laws(p)%law%exact() .and. ns > 0) then
+            slope = hard_stiffness*model%controls%stiffness_scale*self%pairs(p)%stiffness/ &
+                    (median_length(model, self%pairs(p)%seg)* &
+                     maxval(self%thick(first + 1:first + ns), mask=self%thick(first + 1:first + ns) > 0.0_wp))
+         end if
+         do i = first + 1, first + ns
+            self%fric%kt(i) = 0.0_wp
+            if (self%fric%laws(p)%law%frictional()) self%fric%kt(i) = slope*self%length(i)*self%thick(i)
+         end do
+      end associate
+      self%fric%on = .false.
+      self%fric%exact = .false.
+      do q = 1, size(self%fric%laws)
+         if (.not. allocated(self%fric%laws(q)%law)) cycle
+         if (self%fric%laws(q)%law%frictional()) then
+            self%fric%on = .true.
+            self%fric%exact = self%fric%exact .or. self%fric%laws(q)%law%exact()
+         end if
+      end do
+   end subroutine set_pair_law
+
+   !> A step's *CHANGE FRICTION: the pairs of interaction `inter` take the law of
+   !> `params` from the state at u (the last converged one).  Every entry's history
+   !> is committed again with the laws now in force (friction_state_t%commit): its
+   !> tangential force carries over (a sticking entry holds it, and the first update
+   !> maps it onto the new bound), and a pair that had no friction starts anchored
+   !> where it is, with no force.
+   subroutine change_friction(self, model, u, inter, params, error)
+      class(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer, intent(in) :: inter
+      type(friction_params_t), intent(in) :: params
+      type(error_t), allocatable, intent(out) :: error
+      logical :: was_on
+      integer :: p, i
+      was_on = self%fric%on
+      do p = 1, size(self%pairs)
+         if (model%pairs(p)%interaction /= inter) cycle
+         call set_pair_law(self, model, p, params)
+         if (self%fric%laws(p)%law%frictional() .and. .not. self%pairs(p)%small_sliding) then
+            call append_message(error, location_string(model, model%pairs(p)%loc)//': error: friction '// &
+                                '(*CHANGE FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING', err_input)
+            return
+         end if
+      end do
+      if (.not. self%fric%on) return
+      do i = 1, self%n
+         if (self%iseg(i) > 0) self%fric%slip(i) = entry_slip(self, i, u)
+         if (.not. was_on) self%fric%force(i) = 0.0_wp
+      end do
+      call self%fric%commit(self%pair)
+   end subroutine change_friction
 
    !> Median length of the segments seg(:, k) = (a, b).
    function median_length(model, seg) result(h)

@@ -58,6 +58,17 @@ module vemcontact_contact_insertion
    ! entities listed in one message before "... and N more"
    integer, parameter :: max_listed = 20
 
+   !> The work of apply_insertions: the insertions in element, side and xi order
+   !> (order; those of element e are order(eptr(e):eptr(e+1)-1), nins(e) of them),
+   !> the node counts (n0 before, ncorner inserted corners, nmid new side nodes), the
+   !> undeformed coordinates and the new connectivity being built.
+   type :: splice_t
+      integer(ip), allocatable :: order(:), eptr(:), nins(:), new_ptr(:), new_conn(:)
+      real(wp), allocatable :: x0(:, :)
+      integer(ip) :: n0 = 0, ncorner = 0, nmid = 0
+      type(insertion_t), allocatable :: mids(:)
+   end type splice_t
+
 contains
 
    !> Insert the interface nodes of every SURFACE TO SURFACE pair into the model and
@@ -711,20 +722,55 @@ contains
       type(insertion_t), intent(inout) :: ins(:)
       integer(ip), intent(out) :: nadded
       type(insertion_t), allocatable, intent(out) :: mids(:)
-      integer(ip), allocatable :: order(:), new_ptr(:), new_conn(:), nins(:), eptr(:)
-      real(wp), allocatable :: x0(:, :)
-      integer(ip) :: e, n0, k, j, idmax, ncorner, nmid
-      integer :: eo
+      type(splice_t) :: sp
+      integer(ip) :: e, k, idmax
       allocate (mids(0))
       nadded = 0
       if (size(ins) == 0) return
-      order = sorted_order(ins)
-      ! one node per distinct point, numbered after the existing nodes
-      n0 = model%nnode
-      do j = 1, size(order)
-         k = order(j)
+      sp%n0 = model%nnode
+      call number_insertions(ins, sp)
+      call count_insertions(model, ins, sp)
+      idmax = maxval(model%node_id)
+      sp%x0 = model%x
+      call grow_nodes(model, sp%ncorner + sp%nmid)
+      call place_inserted(model, ins, sp)
+      call splice_connectivity(model, ins, sp)
+      do k = sp%n0 + 1, model%nnode
+         model%node_id(k) = idmax + (k - sp%n0)
+      end do
+      do k = 1, size(ins)
+         model%node_loc(ins(k)%node) = model%elem_loc(ins(k)%elem)
+      end do
+      do k = 1, size(sp%mids)
+         model%node_loc(sp%mids(k)%node) = model%elem_loc(sp%mids(k)%elem)
+      end do
+      nadded = sp%ncorner + sp%nmid
+      call renumber_sides(model, ins, sp%order, sp%eptr)
+      call move_alloc(sp%new_ptr, model%elem_ptr)
+      call move_alloc(sp%new_conn, model%elem_conn)
+      do e = 1, model%nelem
+         if (sp%nins(e) == 0) cycle
+         if (element_order(model%elem_type(e)) == 2) then
+            model%elem_type(e) = etype_polygon2
+         else
+            model%elem_type(e) = etype_polygon
+         end if
+      end do
+      call move_alloc(sp%mids, mids)
+   end subroutine apply_insertions
+
+   !> One node per distinct point, numbered after the existing nodes (ins%node);
+   !> sp%order: the insertions in element, side and xi order.
+   subroutine number_insertions(ins, sp)
+      type(insertion_t), intent(inout) :: ins(:)
+      type(splice_t), intent(inout) :: sp
+      integer(ip) :: j, k
+      sp%order = sorted_order(ins)
+      sp%ncorner = 0
+      do j = 1, size(sp%order)
+         k = sp%order(j)
          if (j > 1) then
-            associate (q => ins(order(j - 1)))
+            associate (q => ins(sp%order(j - 1)))
                if (q%elem == ins(k)%elem .and. q%side == ins(k)%side .and. &
                    ins(k)%xi - q%xi <= snap_rel) then
                   ins(k)%node = q%node
@@ -732,31 +778,45 @@ contains
                end if
             end associate
          end if
-         nadded = nadded + 1
-         ins(k)%node = n0 + nadded
+         sp%ncorner = sp%ncorner + 1
+         ins(k)%node = sp%n0 + sp%ncorner
       end do
-      ncorner = nadded
-      ! the distinct insertions of each element, in side and xi order: ins(order(eptr(e):eptr(e+1)-1))
-      order = pack(order, [.true., (ins(order(j))%node /= ins(order(j - 1))%node, j=2, size(order))])
-      allocate (nins(model%nelem), source=0_ip)
-      do j = 1, size(order)
-         nins(ins(order(j))%elem) = nins(ins(order(j))%elem) + 1
+   end subroutine number_insertions
+
+   !> The distinct insertions of each element, in side and xi order:
+   !> ins(order(eptr(e):eptr(e+1)-1)), nins(e) of them; a second-order element
+   !> gains a side node per inserted corner (sp%nmid in all).
+   subroutine count_insertions(model, ins, sp)
+      type(model_t), intent(in) :: model
+      type(insertion_t), intent(in) :: ins(:)
+      type(splice_t), intent(inout) :: sp
+      integer(ip) :: e, j
+      sp%order = pack(sp%order, [.true., (ins(sp%order(j))%node /= ins(sp%order(j - 1))%node, &
+                                          j=2, size(sp%order))])
+      allocate (sp%nins(model%nelem), source=0_ip)
+      do j = 1, size(sp%order)
+         sp%nins(ins(sp%order(j))%elem) = sp%nins(ins(sp%order(j))%elem) + 1
       end do
-      ! a second-order element gains a side node per inserted corner
-      nmid = 0
+      sp%nmid = 0
       do e = 1, model%nelem
-         if (nins(e) > 0 .and. element_order(model%elem_type(e)) == 2) nmid = nmid + nins(e)
+         if (sp%nins(e) > 0 .and. element_order(model%elem_type(e)) == 2) sp%nmid = sp%nmid + sp%nins(e)
       end do
-      allocate (eptr(model%nelem + 1))
-      eptr(1) = 1
+      allocate (sp%eptr(model%nelem + 1))
+      sp%eptr(1) = 1
       do e = 1, model%nelem
-         eptr(e + 1) = eptr(e) + nins(e)
+         sp%eptr(e + 1) = sp%eptr(e) + sp%nins(e)
       end do
-      idmax = maxval(model%node_id)
-      x0 = model%x
-      call grow_nodes(model, ncorner + nmid)
-      do j = 1, size(order)
-         associate (q => ins(order(j)))
+   end subroutine count_insertions
+
+   !> The inserted nodes' coordinates: on the chord of a first-order side, on the
+   !> quadratic of a second-order one (the undeformed sides of sp%x0).
+   subroutine place_inserted(model, ins, sp)
+      type(model_t), intent(inout) :: model
+      type(insertion_t), intent(in) :: ins(:)
+      type(splice_t), intent(in) :: sp
+      integer(ip) :: j
+      do j = 1, size(sp%order)
+         associate (q => ins(sp%order(j)), x0 => sp%x0)
             if (q%mid > 0) then
                model%x(:, q%node) = quadratic_point(x0(:, q%ends(1)), x0(:, q%ends(2)), x0(:, q%mid), q%xi)
             else
@@ -764,120 +824,114 @@ contains
             end if
          end associate
       end do
-      allocate (new_ptr(model%nelem + 1))
-      new_ptr(1) = 1
-      do e = 1, model%nelem
-         eo = element_order(model%elem_type(e))
-         new_ptr(e + 1) = new_ptr(e) + (model%elem_ptr(e + 1) - model%elem_ptr(e)) + eo*nins(e)
-      end do
-      allocate (new_conn(new_ptr(model%nelem + 1) - 1))
-      deallocate (mids)
-      allocate (mids(nmid))
-      nmid = 0
-      do e = 1, model%nelem
-         if (element_order(model%elem_type(e)) == 2 .and. nins(e) > 0) then
-            call connect_quadratic(e)
-         else
-            call connect_linear(e)
-         end if
-      end do
-      do k = n0 + 1, model%nnode
-         model%node_id(k) = idmax + (k - n0)
-      end do
-      do k = 1, size(ins)
-         model%node_loc(ins(k)%node) = model%elem_loc(ins(k)%elem)
-      end do
-      do k = 1, size(mids)
-         model%node_loc(mids(k)%node) = model%elem_loc(mids(k)%elem)
-      end do
-      nadded = ncorner + nmid
-      call renumber_sides(model, ins, order, eptr)
-      call move_alloc(new_ptr, model%elem_ptr)
-      call move_alloc(new_conn, model%elem_conn)
-      do e = 1, model%nelem
-         if (nins(e) == 0) cycle
-         if (element_order(model%elem_type(e)) == 2) then
-            model%elem_type(e) = etype_polygon2
-         else
-            model%elem_type(e) = etype_polygon
-         end if
-      end do
-   contains
-      !> Element e's nodes with the inserted ones after the start node of their side.
-      subroutine connect_linear(e)
-         integer(ip), intent(in) :: e
-         integer(ip) :: p0, nn, m, jj
-         integer :: sd
-         p0 = model%elem_ptr(e)
-         nn = model%elem_ptr(e + 1) - p0
-         m = new_ptr(e)
-         jj = eptr(e)
-         do sd = 1, int(nn)
-            new_conn(m) = model%elem_conn(p0 + sd - 1)
-            m = m + 1
-            do while (jj < eptr(e + 1))
-               if (ins(order(jj))%side /= sd) exit
-               new_conn(m) = ins(order(jj))%node
-               m = m + 1
-               jj = jj + 1
-            end do
-         end do
-      end subroutine connect_linear
+   end subroutine place_inserted
 
-      !> Second-order element e: its corners with the inserted ones, then one side node
-      !> per piece of every side (the old one moved to the middle of the piece holding
-      !> t = 1/2 of its side, new ones for the other pieces).
-      subroutine connect_quadratic(e)
-         integer(ip), intent(in) :: e
-         integer(ip) :: p0, nc, mc, mm, jj, j0, a, b, mid, ends(2)
-         integer :: sd, i, np
-         real(wp) :: t0, t1
-         real(wp), allocatable :: tv(:)
-         p0 = model%elem_ptr(e)
-         nc = (model%elem_ptr(e + 1) - p0)/2
-         mc = new_ptr(e)
-         mm = new_ptr(e) + nc + nins(e)
-         jj = eptr(e)
-         do sd = 1, int(nc)
-            a = model%elem_conn(p0 + sd - 1)
-            b = model%elem_conn(p0 + mod(sd, int(nc)))
-            mid = model%elem_conn(p0 + nc + sd - 1)
-            new_conn(mc) = a
-            mc = mc + 1
-            j0 = jj
-            do while (jj < eptr(e + 1))
-               if (ins(order(jj))%side /= sd) exit
-               new_conn(mc) = ins(order(jj))%node
-               mc = mc + 1
-               jj = jj + 1
-            end do
-            np = int(jj - j0)
-            if (np == 0) then
-               new_conn(mm) = mid
-               mm = mm + 1
-               cycle
-            end if
-            tv = [0.0_wp, (ins(order(j0 + i - 1))%xi, i=1, np), 1.0_wp]
-            do i = 1, np + 1
-               t0 = tv(i)
-               t1 = tv(i + 1)
-               ends(1) = a
-               if (i > 1) ends(1) = ins(order(j0 + i - 2))%node
-               ends(2) = b
-               if (i <= np) ends(2) = ins(order(j0 + i - 1))%node
-               if (t0 <= 0.5_wp .and. 0.5_wp < t1) then
-                  new_conn(mm) = mid
-               else
-                  nmid = nmid + 1
-                  new_conn(mm) = n0 + ncorner + nmid
-                  mids(nmid) = insertion_t(e, sd, 0.5_wp*(t0 + t1), ends, 0_ip, new_conn(mm))
-               end if
-               model%x(:, new_conn(mm)) = quadratic_point(x0(:, a), x0(:, b), x0(:, mid), 0.5_wp*(t0 + t1))
-               mm = mm + 1
-            end do
+   !> The new connectivity (sp%new_ptr, sp%new_conn) with the inserted nodes, and
+   !> the side nodes of split second-order sides (sp%mids).
+   subroutine splice_connectivity(model, ins, sp)
+      type(model_t), intent(inout) :: model
+      type(insertion_t), intent(in) :: ins(:)
+      type(splice_t), intent(inout) :: sp
+      integer(ip) :: e
+      allocate (sp%new_ptr(model%nelem + 1))
+      sp%new_ptr(1) = 1
+      do e = 1, model%nelem
+         sp%new_ptr(e + 1) = sp%new_ptr(e) + (model%elem_ptr(e + 1) - model%elem_ptr(e)) + &
+                             element_order(model%elem_type(e))*sp%nins(e)
+      end do
+      allocate (sp%new_conn(sp%new_ptr(model%nelem + 1) - 1))
+      allocate (sp%mids(sp%nmid))
+      sp%nmid = 0
+      do e = 1, model%nelem
+         if (element_order(model%elem_type(e)) == 2 .and. sp%nins(e) > 0) then
+            call connect_quadratic(model, ins, sp, e)
+         else
+            call connect_linear(model, ins, sp, e)
+         end if
+      end do
+   end subroutine splice_connectivity
+
+   !> Element e's nodes with the inserted ones after the start node of their side.
+   subroutine connect_linear(model, ins, sp, e)
+      type(model_t), intent(in) :: model
+      type(insertion_t), intent(in) :: ins(:)
+      type(splice_t), intent(inout) :: sp
+      integer(ip), intent(in) :: e
+      integer(ip) :: p0, nn, m, jj
+      integer :: sd
+      p0 = model%elem_ptr(e)
+      nn = model%elem_ptr(e + 1) - p0
+      m = sp%new_ptr(e)
+      jj = sp%eptr(e)
+      do sd = 1, int(nn)
+         sp%new_conn(m) = model%elem_conn(p0 + sd - 1)
+         m = m + 1
+         do while (jj < sp%eptr(e + 1))
+            if (ins(sp%order(jj))%side /= sd) exit
+            sp%new_conn(m) = ins(sp%order(jj))%node
+            m = m + 1
+            jj = jj + 1
          end do
-      end subroutine connect_quadratic
-   end subroutine apply_insertions
+      end do
+   end subroutine connect_linear
+
+   !> Second-order element e: its corners with the inserted ones, then one side node
+   !> per piece of every side (the old one moved to the middle of the piece holding
+   !> t = 1/2 of its side, new ones for the other pieces).
+   subroutine connect_quadratic(model, ins, sp, e)
+      type(model_t), intent(inout) :: model
+      type(insertion_t), intent(in) :: ins(:)
+      type(splice_t), intent(inout) :: sp
+      integer(ip), intent(in) :: e
+      integer(ip) :: p0, nc, mc, mm, jj, j0, a, b, mid, ends(2)
+      integer :: sd, i, np
+      real(wp) :: t0, t1
+      real(wp), allocatable :: tv(:)
+      p0 = model%elem_ptr(e)
+      nc = (model%elem_ptr(e + 1) - p0)/2
+      mc = sp%new_ptr(e)
+      mm = sp%new_ptr(e) + nc + sp%nins(e)
+      jj = sp%eptr(e)
+      do sd = 1, int(nc)
+         a = model%elem_conn(p0 + sd - 1)
+         b = model%elem_conn(p0 + mod(sd, int(nc)))
+         mid = model%elem_conn(p0 + nc + sd - 1)
+         sp%new_conn(mc) = a
+         mc = mc + 1
+         j0 = jj
+         do while (jj < sp%eptr(e + 1))
+            if (ins(sp%order(jj))%side /= sd) exit
+            sp%new_conn(mc) = ins(sp%order(jj))%node
+            mc = mc + 1
+            jj = jj + 1
+         end do
+         np = int(jj - j0)
+         if (np == 0) then
+            sp%new_conn(mm) = mid
+            mm = mm + 1
+            cycle
+         end if
+         tv = [0.0_wp, (ins(sp%order(j0 + i - 1))%xi, i=1, np), 1.0_wp]
+         do i = 1, np + 1
+            t0 = tv(i)
+            t1 = tv(i + 1)
+            ends(1) = a
+            if (i > 1) ends(1) = ins(sp%order(j0 + i - 2))%node
+            ends(2) = b
+            if (i <= np) ends(2) = ins(sp%order(j0 + i - 1))%node
+            if (t0 <= 0.5_wp .and. 0.5_wp < t1) then
+               sp%new_conn(mm) = mid
+            else
+               sp%nmid = sp%nmid + 1
+               sp%new_conn(mm) = sp%n0 + sp%ncorner + sp%nmid
+               sp%mids(sp%nmid) = insertion_t(e, sd, 0.5_wp*(t0 + t1), ends, 0_ip, sp%new_conn(mm))
+            end if
+            model%x(:, sp%new_conn(mm)) = quadratic_point(sp%x0(:, a), sp%x0(:, b), sp%x0(:, mid), &
+                                                          0.5_wp*(t0 + t1))
+            mm = mm + 1
+         end do
+      end do
+   end subroutine connect_quadratic
 
    !> Element surfaces and the pressure loads of every step: side k of an element
    !> with insertions becomes sides first .. first + (nodes inserted into side k).

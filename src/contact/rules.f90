@@ -84,7 +84,8 @@ module vemcontact_contact_rules
    type :: matrix_key_t
       logical, allocatable :: active(:), stick(:)
       integer(ip), allocatable :: iseg(:)
-      real(wp), allocatable :: xi(:), normal(:, :), k(:)
+      !> kt: the tangential springs (a step's *CHANGE FRICTION can change them)
+      real(wp), allocatable :: xi(:), normal(:, :), k(:), kt(:)
    end type matrix_key_t
 
 contains
@@ -282,7 +283,16 @@ contains
       key%normal = contact%normal
       key%k = contact%k
       key%stick = sticking(contact)
+      key%kt = stick_springs(contact)
    end function key_of
+
+   !> The entries' tangential springs (none before the tangential state exists).
+   pure function stick_springs(contact) result(kt)
+      type(contact_state_t), intent(in) :: contact
+      real(wp) :: kt(contact%n)
+      kt = 0.0_wp
+      if (allocated(contact%fric%kt)) kt = contact%fric%kt
+   end function stick_springs
 
    !> Which entries stick (none before the tangential state exists).
    pure function sticking(contact) result(st)
@@ -309,6 +319,7 @@ contains
       type(contact_state_t), intent(in) :: contact
       real(wp), intent(in) :: drift
       logical :: st(contact%n)
+      real(wp) :: kt(contact%n)
       integer :: i
       near = allocated(key%active)
       if (.not. near) return
@@ -317,11 +328,12 @@ contains
       near = all(key%active .eqv. contact%active)
       if (.not. near) return
       st = sticking(contact)
+      kt = stick_springs(contact)
       do i = 1, contact%n
          if (.not. contact%active(i)) cycle
          near = key%iseg(i) == contact%iseg(i) .and. abs(key%xi(i) - contact%xi(i)) <= drift .and. &
                 identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i))) .and. &
-                (key%stick(i) .eqv. st(i))
+                (key%stick(i) .eqv. st(i)) .and. identical(key%kt(i), kt(i))
          if (.not. near) return
       end do
    end function near_key
@@ -333,16 +345,18 @@ contains
    pure integer function stick_flips(key, contact) result(m)
       type(matrix_key_t), intent(in) :: key
       type(contact_state_t), intent(in) :: contact
+      real(wp) :: kt(contact%n)
       integer :: i
       m = -1
       if (.not. allocated(key%active)) return
       if (size(key%active) /= contact%n) return
       if (.not. all(key%active .eqv. contact%active)) return
+      kt = stick_springs(contact)
       do i = 1, contact%n
          if (.not. contact%active(i)) cycle
          if (.not. (key%iseg(i) == contact%iseg(i) .and. identical(key%xi(i), contact%xi(i)) .and. &
-                    identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i))))) &
-            return
+                    identical(key%k(i), contact%k(i)) .and. all(identical(key%normal(:, i), contact%normal(:, i))) &
+                    .and. identical(key%kt(i), kt(i)))) return
       end do
       m = count(contact%active .and. (key%stick .neqv. sticking(contact)))
    end function stick_flips

@@ -25,15 +25,27 @@ module vemcontact_contact_tangential
    implicit none
    private
 
-   public :: friction_state_t, law_slot_t, make_law
+   public :: friction_state_t, law_slot_t, make_law, friction_params_t
 
    !> One pair's tangential law.
    type :: law_slot_t
       class(tangential_law_t), allocatable :: law
    end type law_slot_t
 
+   !> The parameters of a tangential law as the deck gives them (*FRICTION, or a
+   !> step's *CHANGE FRICTION): has *FRICTION, ROUGH, mu, the stick slope (0: exact
+   !> stick) and the cohesion.
+   type :: friction_params_t
+      logical :: has_friction = .false.
+      logical :: rough = .false.
+      real(wp) :: mu = 0.0_wp
+      real(wp) :: slope = 0.0_wp
+      real(wp) :: cohesion = 0.0_wp
+   end type friction_params_t
+
    type :: friction_state_t
       type(law_slot_t), allocatable :: laws(:)   !< per pair
+      type(friction_params_t), allocatable :: params(:)   !< per pair, the parameters in force
       logical :: on = .false.                    !< some pair has a frictional law
       logical :: exact = .false.                 !< some frictional pair has exact stick
       !> per entry: tangential spring (force per unit slip), multiplier, anchor

@@ -65,17 +65,18 @@ contains
    end function uplift_head
 
    !> Water pressure gamma_w max(0, head - y) at the joint point x (y up); for a
-   !> *PRESSURE PENETRATION the fluid pressure where the joint is wetted.
+   !> *PRESSURE PENETRATION the fluid pressure where the joint is wetted; both times
+   !> the part in force (up%factor).
    pure real(wp) function uplift_pressure(up, x, s_tip) result(p)
       type(uplift_t), intent(in) :: up
       real(wp), intent(in) :: x(2), s_tip
       if (up%pair > 0) then
          ! *PRESSURE PENETRATION: p on the wetted part (distance from the exposed node
          ! up to s_tip, negative when nothing entered), none beyond
-         p = merge(up%fluid_pressure, 0.0_wp, norm2(x - up%heel) <= s_tip)
+         p = up%factor*merge(up%fluid_pressure, 0.0_wp, norm2(x - up%heel) <= s_tip)
          return
       end if
-      p = up%gamma*max(0.0_wp, uplift_head(up, joint_position(up, x), s_tip) - x(2))
+      p = up%factor*up%gamma*max(0.0_wp, uplift_head(up, joint_position(up, x), s_tip) - x(2))
    end function uplift_pressure
 
    !> The uplift in force on each slave entry of `contact`: the index into `uplifts`

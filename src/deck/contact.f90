@@ -7,7 +7,7 @@
 !> CalculiX.
 module vemcontact_deck_contact
    use vemcontact_kinds, only: wp, ip
-   use vemcontact_model, only: model_t, surface_t, interaction_t, contact_pair_t, source_loc_t, &
+   use vemcontact_model, only: model_t, surface_t, interaction_t, contact_pair_t, source_loc_t, friction_change_t, &
                                surface_element, surface_node, pair_node_to_surface, pair_surface_to_surface, &
                                element_order
    use vemcontact_deck_state, only: deck_parser_t, item_list_t, pair_ref_t, here, err_here, err_at, &
@@ -23,7 +23,7 @@ module vemcontact_deck_contact
    private
 
    public :: read_surface, read_interaction, read_behavior, drop_behavior, read_contact_pair, read_controls
-   public :: read_friction
+   public :: read_friction, read_change_friction
    public :: finish_contact, find_surface
 
    character(len=*), parameter :: side_help = 'sides are S1, S2, ...: side Sk runs from node k to node k+1 '// &
@@ -377,15 +377,18 @@ contains
    !> mu [, stick slope] (CalculiX: Coulomb friction |t_T| <= mu p; the stick slope is
    !> the tangential traction per unit elastic slip, and without it stick is exact).
    !> ROUGH (Abaqus): no slip, no data line.  COHESION=c (vemcontact's extension):
-   !> Mohr-Coulomb, |t_T| <= c + mu p while the contact is closed.
+   !> Mohr-Coulomb, |t_T| <= c + mu p while the contact is closed.  Inside a step it
+   !> follows a *CHANGE FRICTION (read_step_friction).
    subroutine read_friction(p, model, kw)
       type(deck_parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
-      character(len=:), allocatable :: cstr
-      logical :: rough, has_c, ok, ok_mu, ok_s, dup, first
-      real(wp) :: mu, slope, c
-      integer :: stat
+      type(friction_change_t) :: law
+      logical :: ok, dup
+      if (p%in_step) then
+         call read_step_friction(p, kw)
+         return
+      end if
       call before_steps(p, '*FRICTION')
       if (p%cur_inter == 0) then
          call err_here(p, '*FRICTION must follow a *SURFACE INTERACTION', &
@@ -398,6 +401,29 @@ contains
          if (dup) call err_here(p, 'surface interaction '//model%interactions(p%cur_inter)%name// &
                                 ' already has *FRICTION')
       end if
+      call friction_law(p, kw, law, ok)
+      if (p%cur_inter > 0 .and. .not. dup) then
+         model%interactions(p%cur_inter)%has_friction = .true.
+         if (ok) then
+            model%interactions(p%cur_inter)%mu = law%mu
+            model%interactions(p%cur_inter)%stick_slope = law%stick_slope
+            model%interactions(p%cur_inter)%cohesion = law%cohesion
+            model%interactions(p%cur_inter)%rough = law%rough
+         end if
+      end if
+   end subroutine read_friction
+
+   !> The law of a *FRICTION line and its data line (ROUGH, COHESION=, mu [, stick
+   !> slope]) into law%rough, mu, stick_slope, cohesion; ok = .false. after an error.
+   subroutine friction_law(p, kw, law, ok)
+      type(deck_parser_t), intent(inout) :: p
+      type(keyword_line_t), intent(in) :: kw
+      type(friction_change_t), intent(inout) :: law
+      logical, intent(out) :: ok
+      character(len=:), allocatable :: cstr
+      logical :: rough, has_c, ok_mu, ok_s, first
+      real(wp) :: mu, slope, c
+      integer :: stat
       rough = has_param(kw, 'ROUGH')
       has_c = has_param(kw, 'COHESION')
       ok = .true.
@@ -470,16 +496,60 @@ contains
             end do
          end if
       end if
-      if (p%cur_inter > 0 .and. .not. dup) then
-         model%interactions(p%cur_inter)%has_friction = .true.
-         if (ok) then
-            model%interactions(p%cur_inter)%mu = mu
-            model%interactions(p%cur_inter)%stick_slope = slope
-            model%interactions(p%cur_inter)%cohesion = c
-            model%interactions(p%cur_inter)%rough = rough
-         end if
+      law%rough = rough
+      law%mu = mu
+      law%stick_slope = slope
+      law%cohesion = c
+   end subroutine friction_law
+
+   !> *FRICTION in a step: the new law of the *CHANGE FRICTION just before it.
+   subroutine read_step_friction(p, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(keyword_line_t), intent(in) :: kw
+      type(friction_change_t) :: law
+      logical :: ok
+      integer :: k
+      if (p%change_inter == 0) then
+         call err_here(p, '*FRICTION inside a *STEP must follow *CHANGE FRICTION, INTERACTION=name', &
+                       'the model''s *FRICTION goes under its *SURFACE INTERACTION before the first *STEP')
       end if
-   end subroutine read_friction
+      if (p%change_inter <= 0) then
+         call skip_data(p)
+         return
+      end if
+      call friction_law(p, kw, law, ok)
+      law%interaction = p%change_inter
+      law%loc = p%change_loc
+      p%change_inter = 0
+      if (.not. ok) return
+      if (.not. allocated(p%cur%friction_changes)) allocate (p%cur%friction_changes(0))
+      ! a second change of the same interaction in one step replaces the first
+      k = findloc(p%cur%friction_changes%interaction, law%interaction, dim=1)
+      if (k > 0) then
+         p%cur%friction_changes(k) = law
+      else
+         p%cur%friction_changes = [p%cur%friction_changes, law]
+      end if
+   end subroutine read_step_friction
+
+   !> *CHANGE FRICTION, INTERACTION=name (in a step; CalculiX, Abaqus): the *FRICTION
+   !> that follows gives the interaction's law from this step on.
+   subroutine read_change_friction(p, model, kw)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(in) :: model
+      type(keyword_line_t), intent(in) :: kw
+      character(len=:), allocatable :: name
+      logical :: found
+      integer :: k
+      p%change_loc = here(p)
+      p%change_inter = -1
+      call get_param(kw, 'INTERACTION', name, found)
+      do k = 1, p%ninter
+         if (model%interactions(k)%name == name) p%change_inter = k
+      end do
+      if (p%change_inter < 0) call err_here(p, 'undefined surface interaction '//name, &
+                                            '*CHANGE FRICTION names a *SURFACE INTERACTION of the model')
+   end subroutine read_change_friction
 
    !> After a *SURFACE BEHAVIOR that was reported as wrong, count the current interaction as
    !> having one, so that a pair using it does not report it again as missing.

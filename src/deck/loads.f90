@@ -723,6 +723,7 @@ contains
       call move_alloc(a%cload, b%cload)
       call move_alloc(a%dload, b%dload)
       call move_alloc(a%uplift, b%uplift)
+      call move_alloc(a%friction_changes, b%friction_changes)
       b%temperature_new = a%temperature_new
       call move_alloc(a%temperature, b%temperature)
       call move_alloc(a%outputs, b%outputs)
@@ -751,6 +752,7 @@ contains
       if (acc%nc > 0) s%cload = acc%cload(1:acc%nc)
       if (acc%nd > 0) s%dload = acc%dload(1:acc%nd)
       if (allocated(acc%uplift)) s%uplift = acc%uplift
+      if (allocated(acc%friction_changes)) s%friction_changes = acc%friction_changes
       s%temperature_new = acc%tnew
       allocate (s%temperature(acc%nt))
       if (acc%nt > 0) s%temperature = acc%temperature(1:acc%nt)

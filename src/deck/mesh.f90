@@ -309,18 +309,16 @@ contains
 
    !> *NSET, NSET=name [, GENERATE] (is_node) or *ELSET, ELSET=name [, GENERATE].
    !> Data lines: ids and names of existing sets, or with GENERATE first, last [, increment].
-   !> A second definition with the same name appends, as in CalculiX.
+   !> A second definition with the same name appends, as in CalculiX.  A data line
+   !> with an error adds nothing.
    subroutine read_set(p, model, kw, is_node)
       type(deck_parser_t), intent(inout) :: p
       type(model_t), intent(inout) :: model
       type(keyword_line_t), intent(in) :: kw
       logical, intent(in) :: is_node
-      character(len=:), allocatable :: sname, what, ref
+      character(len=:), allocatable :: sname, what
       logical :: found, generate, ok
-      integer :: kset, k, kind, kref, nmissing
-      integer(ip) :: id, first, last, inc, i, idx, first_missing
-      integer(i8) :: nrange, nfound
-      character(len=24) :: cbuf
+      integer :: kset, k
       type(item_list_t) :: line_items
       if (is_node) then
          what = 'node'
@@ -338,100 +336,11 @@ contains
          call split_fields(p%src%text(1:p%src%length), p%f)
          line_items%n = 0
          if (generate) then
-            if (p%f%n < 2 .or. p%f%n > 3) then
-               call err_here(p, 'a GENERATE data line needs first, last [, increment], found '// &
-                             int_str(p%f%n)//' fields')
-               cycle
-            end if
-            call get_id(p, 1, 'first '//what//' id', first, ok)
-            if (.not. ok) cycle
-            call get_id(p, 2, 'last '//what//' id', last, ok)
-            if (.not. ok) cycle
-            inc = 1
-            if (p%f%n == 3) then
-               call get_int(p, 3, 'increment', inc, ok)
-               if (.not. ok) cycle
-            end if
-            if (inc <= 0) then
-               call err_here(p, 'GENERATE increment must be positive, found '//int_str(inc))
-               cycle
-            end if
-            if (last < first) then
-               call err_here(p, 'GENERATE range is empty: last id '//int_str(last)// &
-                             ' is smaller than first id '//int_str(first))
-               cycle
-            end if
-            ! more ids in the range than defined: some are missing; they are counted
-            ! from the defined ids, never by walking a range of up to 2**31 ids
-            nrange = (int(last, i8) - first)/inc + 1
-            if (nrange > int(merge(model%nnode, model%nelem, is_node), i8)) then
-               nfound = 0
-               do k = 1, merge(model%nnode, model%nelem, is_node)
-                  if (is_node) then
-                     id = model%node_id(k)
-                  else
-                     id = model%elem_id(k)
-                  end if
-                  if (id >= first .and. id <= last .and. mod(int(id, i8) - first, int(inc, i8)) == 0) &
-                     nfound = nfound + 1
-               end do
-               ! the first missing id comes after at most nfound defined ones
-               first_missing = first
-               do while (lookup(first_missing) /= 0)
-                  first_missing = first_missing + inc
-               end do
-               write (cbuf, '(i0)') nrange - nfound
-               call err_here(p, trim(cbuf)//' of the ids '//int_str(first)//' to '//int_str(last)// &
-                             ' are not defined '//what//'s (the first is '//int_str(first_missing)//')', &
-                             what//'s must be defined before a set refers to them')
-               cycle
-            end if
-            nmissing = 0
-            first_missing = 0
-            do i = first, last, inc
-               idx = lookup(i)
-               if (idx == 0) then
-                  nmissing = nmissing + 1
-                  if (nmissing == 1) first_missing = i
-               else
-                  call push_item(line_items, idx)
-               end if
-               if (i > last - inc) exit   ! avoids overflow of i near huge()
-            end do
-            if (nmissing > 0) then
-               call err_here(p, int_str(nmissing)//' of the ids '//int_str(first)//' to '//int_str(last)// &
-                             ' are not defined '//what//'s (the first is '//int_str(first_missing)//')', &
-                             what//'s must be defined before a set refers to them')
-               cycle
-            end if
+            call generate_line(p, model, is_node, what, line_items, ok)
          else
-            ok = .true.
-            do k = 1, p%f%n
-               if (p%f%last(k) < p%f%first(k)) cycle
-               call ref_kind(p, k, kind, id, what)
-               if (kind == ref_id) then
-                  idx = lookup(id)
-                  if (idx == 0) then
-                     call err_here(p, 'undefined '//what//' '//int_str(id), &
-                                   what//'s must be defined before a set refers to them')
-                     ok = .false.
-                     exit
-                  end if
-                  call push_item(line_items, idx)
-               else if (kind == ref_name) then
-                  ref = to_upper(squeeze(field(p, k)))
-                  call add_named(ref, kref)
-                  if (kref == 0) then
-                     ok = .false.
-                     exit
-                  end if
-               else
-                  ok = .false.
-                  exit
-               end if
-            end do
-            if (.not. ok) cycle
+            call list_line(p, model, is_node, what, line_items, ok)
          end if
+         if (.not. ok) cycle
          do k = 1, line_items%n
             if (is_node) then
                call push_item(p%nset_items(kset), line_items%a(k))
@@ -440,41 +349,178 @@ contains
             end if
          end do
       end do
-   contains
-      function lookup(uid) result(ix)
-         integer(ip), intent(in) :: uid
-         integer(ip) :: ix
-         if (is_node) then
-            ix = node_index(p, model, uid)
-         else
-            ix = elem_index(p, model, uid)
-         end if
-      end function lookup
-
-      !> Append the items of the existing set `name` to line_items; kref = 0 if undefined.
-      subroutine add_named(name, kref)
-         character(len=*), intent(in) :: name
-         integer, intent(out) :: kref
-         integer(ip) :: j
-         if (is_node) then
-            call get_set(model%nsets, p%nset_items, p%nnset, name, here(p), .false., kref)
-            if (kref == 0) then
-               call err_here(p, 'undefined node set '//name, set_suggestion(model%nsets, p%nnset, name))
-               return
-            end if
-            do j = 1, p%nset_items(kref)%n
-               call push_item(line_items, p%nset_items(kref)%a(j))
-            end do
-         else
-            call get_set(model%elsets, p%elset_items, p%nelset, name, here(p), .false., kref)
-            if (kref == 0) then
-               call err_here(p, 'undefined element set '//name, set_suggestion(model%elsets, p%nelset, name))
-               return
-            end if
-            do j = 1, p%elset_items(kref)%n
-               call push_item(line_items, p%elset_items(kref)%a(j))
-            end do
-         end if
-      end subroutine add_named
    end subroutine read_set
+
+   !> A GENERATE data line, first, last [, increment]: the ids of the range into
+   !> `items`; ok = .false. after an error (said at the line).
+   subroutine generate_line(p, model, is_node, what, items, ok)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(in) :: model
+      logical, intent(in) :: is_node
+      character(len=*), intent(in) :: what
+      type(item_list_t), intent(inout) :: items
+      logical, intent(out) :: ok
+      integer(ip) :: first, last, inc, i, idx, first_missing
+      integer :: nmissing
+      if (p%f%n < 2 .or. p%f%n > 3) then
+         call err_here(p, 'a GENERATE data line needs first, last [, increment], found '// &
+                       int_str(p%f%n)//' fields')
+         ok = .false.
+         return
+      end if
+      call get_id(p, 1, 'first '//what//' id', first, ok)
+      if (ok) call get_id(p, 2, 'last '//what//' id', last, ok)
+      inc = 1
+      if (ok .and. p%f%n == 3) call get_int(p, 3, 'increment', inc, ok)
+      if (.not. ok) return
+      ok = .false.
+      if (inc <= 0) then
+         call err_here(p, 'GENERATE increment must be positive, found '//int_str(inc))
+         return
+      end if
+      if (last < first) then
+         call err_here(p, 'GENERATE range is empty: last id '//int_str(last)// &
+                       ' is smaller than first id '//int_str(first))
+         return
+      end if
+      if (range_exceeds_model(p, model, is_node, what, first, last, inc)) return
+      nmissing = 0
+      first_missing = 0
+      do i = first, last, inc
+         idx = lookup(p, model, is_node, i)
+         if (idx == 0) then
+            nmissing = nmissing + 1
+            if (nmissing == 1) first_missing = i
+         else
+            call push_item(items, idx)
+         end if
+         if (i > last - inc) exit   ! avoids overflow of i near huge()
+      end do
+      if (nmissing > 0) then
+         call err_here(p, int_str(nmissing)//' of the ids '//int_str(first)//' to '//int_str(last)// &
+                       ' are not defined '//what//'s (the first is '//int_str(first_missing)//')', &
+                       what//'s must be defined before a set refers to them')
+         return
+      end if
+      ok = .true.
+   end subroutine generate_line
+
+   !> Whether a GENERATE range holds more ids than the model defines (then some are
+   !> missing: said at the line).  They are counted from the defined ids, never by
+   !> walking a range of up to 2**31 ids.
+   logical function range_exceeds_model(p, model, is_node, what, first, last, inc) result(exceeds)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(in) :: model
+      logical, intent(in) :: is_node
+      character(len=*), intent(in) :: what
+      integer(ip), intent(in) :: first, last, inc
+      integer(i8) :: nrange, nfound
+      integer(ip) :: id, first_missing
+      integer :: k
+      character(len=24) :: cbuf
+      nrange = (int(last, i8) - first)/inc + 1
+      exceeds = nrange > int(merge(model%nnode, model%nelem, is_node), i8)
+      if (.not. exceeds) return
+      nfound = 0
+      do k = 1, merge(model%nnode, model%nelem, is_node)
+         if (is_node) then
+            id = model%node_id(k)
+         else
+            id = model%elem_id(k)
+         end if
+         if (id >= first .and. id <= last .and. mod(int(id, i8) - first, int(inc, i8)) == 0) &
+            nfound = nfound + 1
+      end do
+      ! the first missing id comes after at most nfound defined ones
+      first_missing = first
+      do while (lookup(p, model, is_node, first_missing) /= 0)
+         first_missing = first_missing + inc
+      end do
+      write (cbuf, '(i0)') nrange - nfound
+      call err_here(p, trim(cbuf)//' of the ids '//int_str(first)//' to '//int_str(last)// &
+                    ' are not defined '//what//'s (the first is '//int_str(first_missing)//')', &
+                    what//'s must be defined before a set refers to them')
+   end function range_exceeds_model
+
+   !> A data line of ids and set names into `items`; ok = .false. after an error.
+   subroutine list_line(p, model, is_node, what, items, ok)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      logical, intent(in) :: is_node
+      character(len=*), intent(in) :: what
+      type(item_list_t), intent(inout) :: items
+      logical, intent(out) :: ok
+      character(len=:), allocatable :: ref
+      integer :: k, kind
+      integer(ip) :: id, idx
+      ok = .true.
+      do k = 1, p%f%n
+         if (p%f%last(k) < p%f%first(k)) cycle
+         call ref_kind(p, k, kind, id, what)
+         if (kind == ref_id) then
+            idx = lookup(p, model, is_node, id)
+            if (idx == 0) then
+               call err_here(p, 'undefined '//what//' '//int_str(id), &
+                             what//'s must be defined before a set refers to them')
+               ok = .false.
+               return
+            end if
+            call push_item(items, idx)
+         else if (kind == ref_name) then
+            ref = to_upper(squeeze(field(p, k)))
+            call add_named(p, model, is_node, ref, items, ok)
+            if (.not. ok) return
+         else
+            ok = .false.
+            return
+         end if
+      end do
+   end subroutine list_line
+
+   !> The index of the node (is_node) or element with user id uid; 0 if undefined.
+   function lookup(p, model, is_node, uid) result(ix)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(in) :: model
+      logical, intent(in) :: is_node
+      integer(ip), intent(in) :: uid
+      integer(ip) :: ix
+      if (is_node) then
+         ix = node_index(p, model, uid)
+      else
+         ix = elem_index(p, model, uid)
+      end if
+   end function lookup
+
+   !> Append the items of the existing set `name` to items; ok = .false. if undefined.
+   subroutine add_named(p, model, is_node, name, items, ok)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      logical, intent(in) :: is_node
+      character(len=*), intent(in) :: name
+      type(item_list_t), intent(inout) :: items
+      logical, intent(out) :: ok
+      integer :: kref
+      integer(ip) :: j
+      if (is_node) then
+         call get_set(model%nsets, p%nset_items, p%nnset, name, here(p), .false., kref)
+         ok = kref /= 0
+         if (.not. ok) then
+            call err_here(p, 'undefined node set '//name, set_suggestion(model%nsets, p%nnset, name))
+            return
+         end if
+         do j = 1, p%nset_items(kref)%n
+            call push_item(items, p%nset_items(kref)%a(j))
+         end do
+      else
+         call get_set(model%elsets, p%elset_items, p%nelset, name, here(p), .false., kref)
+         ok = kref /= 0
+         if (.not. ok) then
+            call err_here(p, 'undefined element set '//name, set_suggestion(model%elsets, p%nelset, name))
+            return
+         end if
+         do j = 1, p%elset_items(kref)%n
+            call push_item(items, p%elset_items(kref)%a(j))
+         end do
+      end if
+   end subroutine add_named
 end module vemcontact_deck_mesh

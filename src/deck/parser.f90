@@ -4,7 +4,7 @@
 !> next line it can make sense of, so one run reports all problems of a deck.
 module vemcontact_deck_parser
    use vemcontact_model, only: model_t, output_node, output_element, output_contact
-   use vemcontact_deck_state, only: deck_parser_t, err_here, refuse_here, here
+   use vemcontact_deck_state, only: deck_parser_t, err_here, err_at, refuse_here, here
    use vemcontact_deck_source, only: line_keyword, line_data, line_eof
    use vemcontact_deck_fields, only: keyword_line_t, parse_keyword_line
    use vemcontact_deck_registry, only: keywords, find_keyword, keyword_suggestion, is_calculix_keyword, &
@@ -20,7 +20,7 @@ module vemcontact_deck_parser
                                        kw_output, kw_uplift, kw_equation, kw_part, kw_end_part, kw_assembly, &
                                        kw_end_assembly, kw_instance, kw_end_instance, kw_preprint, kw_restart, &
                                        kw_initial_conditions, kw_temperature, kw_expansion, kw_tie, kw_amplitude, kw_friction, &
-                                       kw_strength_reduction, kw_pressure_penetration
+                                       kw_strength_reduction, kw_pressure_penetration, kw_change_friction
    use vemcontact_deck_lines, only: advance, check_keyword, skip_data, no_data
    use vemcontact_deck_mesh, only: read_nodes, read_elements, read_set
    use vemcontact_deck_props, only: read_material, read_elastic, read_density, read_section, read_expansion
@@ -38,7 +38,7 @@ module vemcontact_deck_parser
    use vemcontact_deck_pressure_penetration, only: read_pressure_penetration
    use vemcontact_deck_strength_reduction, only: read_strength_reduction
    use vemcontact_deck_contact, only: read_surface, read_interaction, read_behavior, drop_behavior, &
-                                      read_contact_pair, read_controls, read_friction
+                                      read_contact_pair, read_controls, read_friction, read_change_friction
    implicit none
    private
 
@@ -85,6 +85,7 @@ contains
          end if
          if (id /= kw_elastic .and. id /= kw_density .and. id /= kw_expansion) p%cur_mat = 0
          if (id /= kw_surface_behavior .and. id /= kw_friction) p%cur_inter = 0
+         if (id /= kw_friction) call end_change_friction(p)
          call check_keyword(p, kw, id, ok)
          if (ok) call check_context(p, id, ok)
          if (.not. ok) then
@@ -92,6 +93,7 @@ contains
             if (id == kw_element) p%element_errors = .true.
             if (id == kw_material) p%cur_mat = -1   ! its *ELASTIC and *DENSITY are dropped silently
             if (id == kw_surface_interaction) p%cur_inter = -1   ! and its *SURFACE BEHAVIOR
+            if (id == kw_change_friction) p%change_inter = -1   ! and its *FRICTION
             if (id == kw_surface_behavior) call drop_behavior(p, model)
             if (id == kw_friction .and. p%cur_inter > 0) model%interactions(p%cur_inter)%has_friction = .true.
             call skip_data(p)
@@ -106,122 +108,216 @@ contains
                cycle
             end if
          end if
-         select case (id)
-         case (kw_heading)
-            call read_heading(p, model)
-         case (kw_node)
-            call read_nodes(p, model, kw)
-         case (kw_element)
-            call read_elements(p, model, kw)
-         case (kw_nset)
-            call read_set(p, model, kw, .true.)
-            call restore_offsets(p)
-         case (kw_elset)
-            call read_set(p, model, kw, .false.)
-            call restore_offsets(p)
-         case (kw_material)
-            call read_material(p, model, kw)
-            call no_data(p, '*MATERIAL')
-         case (kw_elastic)
-            call read_elastic(p, model)
-         case (kw_density)
-            call read_density(p, model)
-         case (kw_solid_section)
-            call read_section(p, model, kw)
-         case (kw_boundary)
-            call load_amplitude(p, model, kw, '*BOUNDARY')
-            call read_boundary(p, model, kw)
-            p%amp = 0
-         case (kw_cload)
-            call load_amplitude(p, model, kw, '*CLOAD')
-            call read_cload(p, model, kw)
-            p%amp = 0
-         case (kw_dload)
-            call load_amplitude(p, model, kw, '*DLOAD')
-            call read_dload(p, model, kw)
-            p%amp = 0
-         case (kw_amplitude)
-            call read_amplitude(p, model, kw)
-         case (kw_step)
-            call start_step(p, model, kw)
-            call no_data(p, '*STEP')
-         case (kw_static)
-            call read_procedure(p, .false., model, kw)
-         case (kw_geostatic)
-            call read_procedure(p, .true., model, kw)
-         case (kw_strength_reduction)
-            call read_strength_reduction(p, model, kw)
-         case (kw_dsload)
-            call load_amplitude(p, model, kw, '*DSLOAD')
-            call read_dsload(p, model, kw)
-            p%amp = 0
-         case (kw_surface)
-            call read_surface(p, model, kw)
-         case (kw_surface_interaction)
-            call read_interaction(p, model, kw)
-            call no_data(p, '*SURFACE INTERACTION')
-         case (kw_surface_behavior)
-            call read_behavior(p, model, kw)
-         case (kw_friction)
-            call read_friction(p, model, kw)
-         case (kw_contact_pair)
-            call read_contact_pair(p, kw)
-         case (kw_contact_controls)
-            call read_controls(p, model, kw)
-            call no_data(p, '*CONTACT CONTROLS')
-         case (kw_node_file, kw_node_output, kw_node_print)
-            call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_node, id == kw_node_print)
-         case (kw_el_file, kw_element_output, kw_el_print)
-            call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_element, id == kw_el_print)
-         case (kw_contact_file, kw_contact_output, kw_contact_print)
-            call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_contact, &
-                                     id == kw_contact_print)
-         case (kw_output)
-            call read_output(p, model, kw)
-         case (kw_uplift)
-            call read_uplift(p, model, kw)
-         case (kw_pressure_penetration)
-            call read_pressure_penetration(p, model, kw)
-         case (kw_equation)
-            call read_equation(p, model)
-         case (kw_part)
-            call read_part(p, model, kw)
-            call no_data(p, '*PART')
-         case (kw_end_part)
-            call end_part(p, model)
-            call no_data(p, '*END PART')
-         case (kw_assembly)
-            call read_assembly(p)
-            call no_data(p, '*ASSEMBLY')
-         case (kw_end_assembly)
-            call end_assembly(p)
-            call no_data(p, '*END ASSEMBLY')
-         case (kw_instance)
-            call read_instance(p, model, kw)
-         case (kw_end_instance)
-            call end_instance(p)
-            call no_data(p, '*END INSTANCE')
-         case (kw_preprint)
-            call read_noop(p, kw, 'PREPRINT')
-         case (kw_restart)
-            call read_noop(p, kw, 'RESTART')
-         case (kw_initial_conditions)
-            call read_initial_conditions(p, model, kw)
-         case (kw_temperature)
-            call read_temperature(p, model, kw)
-         case (kw_expansion)
-            call read_expansion(p, model)
-         case (kw_tie)
-            call read_tie(p, model, kw)
-         case (kw_end_step)
-            call end_step(p, model)
-            call no_data(p, '*END STEP')
-         case default
-            ! *INCLUDE is handled by advance; nothing else is registered
-            call skip_data(p)
-         end select
+         call dispatch(p, model, kw, id)
       end do
    end subroutine parse_lines
+
+   !> Hands the keyword line to its handler, which reads the data lines that follow.
+   subroutine dispatch(p, model, kw, id)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(inout) :: kw
+      integer, intent(in) :: id
+      logical :: handled
+      call read_mesh_data(p, model, kw, id, handled)
+      if (.not. handled) call read_step_data(p, model, kw, id, handled)
+      if (.not. handled) call read_contact_data(p, model, kw, id, handled)
+      if (.not. handled) call read_output_data(p, model, kw, id, handled)
+      if (.not. handled) call read_assembly_data(p, model, kw, id, handled)
+      ! *INCLUDE is handled by advance; nothing else is registered
+      if (.not. handled) call skip_data(p)
+   end subroutine dispatch
+
+   !> Mesh, sets, materials, sections and constraints.
+   subroutine read_mesh_data(p, model, kw, id, handled)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(inout) :: kw
+      integer, intent(in) :: id
+      logical, intent(out) :: handled
+      handled = .true.
+      select case (id)
+      case (kw_heading)
+         call read_heading(p, model)
+      case (kw_node)
+         call read_nodes(p, model, kw)
+      case (kw_element)
+         call read_elements(p, model, kw)
+      case (kw_nset)
+         call read_set(p, model, kw, .true.)
+         call restore_offsets(p)
+      case (kw_elset)
+         call read_set(p, model, kw, .false.)
+         call restore_offsets(p)
+      case (kw_material)
+         call read_material(p, model, kw)
+         call no_data(p, '*MATERIAL')
+      case (kw_elastic)
+         call read_elastic(p, model)
+      case (kw_density)
+         call read_density(p, model)
+      case (kw_solid_section)
+         call read_section(p, model, kw)
+      case (kw_expansion)
+         call read_expansion(p, model)
+      case (kw_equation)
+         call read_equation(p, model)
+      case (kw_tie)
+         call read_tie(p, model, kw)
+      case default
+         handled = .false.
+      end select
+   end subroutine read_mesh_data
+
+   !> Steps, their procedures and loads, initial conditions.
+   subroutine read_step_data(p, model, kw, id, handled)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(inout) :: kw
+      integer, intent(in) :: id
+      logical, intent(out) :: handled
+      handled = .true.
+      select case (id)
+      case (kw_boundary)
+         call load_amplitude(p, model, kw, '*BOUNDARY')
+         call read_boundary(p, model, kw)
+         p%amp = 0
+      case (kw_cload)
+         call load_amplitude(p, model, kw, '*CLOAD')
+         call read_cload(p, model, kw)
+         p%amp = 0
+      case (kw_dload)
+         call load_amplitude(p, model, kw, '*DLOAD')
+         call read_dload(p, model, kw)
+         p%amp = 0
+      case (kw_amplitude)
+         call read_amplitude(p, model, kw)
+      case (kw_step)
+         call start_step(p, model, kw)
+         call no_data(p, '*STEP')
+      case (kw_static)
+         call read_procedure(p, .false., model, kw)
+      case (kw_geostatic)
+         call read_procedure(p, .true., model, kw)
+      case (kw_strength_reduction)
+         call read_strength_reduction(p, model, kw)
+      case (kw_dsload)
+         call load_amplitude(p, model, kw, '*DSLOAD')
+         call read_dsload(p, model, kw)
+         p%amp = 0
+      case (kw_uplift)
+         call read_uplift(p, model, kw)
+      case (kw_pressure_penetration)
+         call read_pressure_penetration(p, model, kw)
+      case (kw_initial_conditions)
+         call read_initial_conditions(p, model, kw)
+      case (kw_temperature)
+         call read_temperature(p, model, kw)
+      case (kw_end_step)
+         call end_step(p, model)
+         call no_data(p, '*END STEP')
+      case default
+         handled = .false.
+      end select
+   end subroutine read_step_data
+
+   !> Surfaces, interactions and contact pairs.
+   subroutine read_contact_data(p, model, kw, id, handled)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(inout) :: kw
+      integer, intent(in) :: id
+      logical, intent(out) :: handled
+      handled = .true.
+      select case (id)
+      case (kw_surface)
+         call read_surface(p, model, kw)
+      case (kw_surface_interaction)
+         call read_interaction(p, model, kw)
+         call no_data(p, '*SURFACE INTERACTION')
+      case (kw_surface_behavior)
+         call read_behavior(p, model, kw)
+      case (kw_friction)
+         call read_friction(p, model, kw)
+      case (kw_change_friction)
+         call read_change_friction(p, model, kw)
+         call no_data(p, '*CHANGE FRICTION')
+      case (kw_contact_pair)
+         call read_contact_pair(p, kw)
+      case (kw_contact_controls)
+         call read_controls(p, model, kw)
+         call no_data(p, '*CONTACT CONTROLS')
+      case default
+         handled = .false.
+      end select
+   end subroutine read_contact_data
+
+   !> Output requests.
+   subroutine read_output_data(p, model, kw, id, handled)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(inout) :: kw
+      integer, intent(in) :: id
+      logical, intent(out) :: handled
+      handled = .true.
+      select case (id)
+      case (kw_node_file, kw_node_output, kw_node_print)
+         call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_node, id == kw_node_print)
+      case (kw_el_file, kw_element_output, kw_el_print)
+         call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_element, id == kw_el_print)
+      case (kw_contact_file, kw_contact_output, kw_contact_print)
+         call read_output_request(p, model, kw, '*'//trim(keywords(id)%name), output_contact, &
+                                  id == kw_contact_print)
+      case (kw_output)
+         call read_output(p, model, kw)
+      case default
+         handled = .false.
+      end select
+   end subroutine read_output_data
+
+   !> Parts, the assembly and its instances; keywords read and ignored.
+   subroutine read_assembly_data(p, model, kw, id, handled)
+      type(deck_parser_t), intent(inout) :: p
+      type(model_t), intent(inout) :: model
+      type(keyword_line_t), intent(inout) :: kw
+      integer, intent(in) :: id
+      logical, intent(out) :: handled
+      handled = .true.
+      select case (id)
+      case (kw_part)
+         call read_part(p, model, kw)
+         call no_data(p, '*PART')
+      case (kw_end_part)
+         call end_part(p, model)
+         call no_data(p, '*END PART')
+      case (kw_assembly)
+         call read_assembly(p)
+         call no_data(p, '*ASSEMBLY')
+      case (kw_end_assembly)
+         call end_assembly(p)
+         call no_data(p, '*END ASSEMBLY')
+      case (kw_instance)
+         call read_instance(p, model, kw)
+      case (kw_end_instance)
+         call end_instance(p)
+         call no_data(p, '*END INSTANCE')
+      case (kw_preprint)
+         call read_noop(p, kw, 'PREPRINT')
+      case (kw_restart)
+         call read_noop(p, kw, 'RESTART')
+      case default
+         handled = .false.
+      end select
+   end subroutine read_assembly_data
+
+   !> A *CHANGE FRICTION ends with the *FRICTION after it; any other keyword there
+   !> leaves it without one (an error at its line).
+   subroutine end_change_friction(p)
+      type(deck_parser_t), intent(inout) :: p
+      if (p%change_inter > 0) call err_at(p, p%change_loc, '*CHANGE FRICTION must be followed by *FRICTION', &
+                                          'the *FRICTION line after it gives the new law: mu [, stick slope]')
+      p%change_inter = 0
+   end subroutine end_change_friction
 
    !> Inside a *PART, the set names of NSET= and ELSET= are the part's own:
    !> "part.name" until its *INSTANCE renames them.
@@ -254,7 +350,8 @@ contains
       integer, intent(in) :: id
       if (p%cur%load_loc%line > 0) return
       select case (id)
-      case (kw_boundary, kw_cload, kw_dload, kw_dsload, kw_uplift, kw_temperature, kw_pressure_penetration)
+      case (kw_boundary, kw_cload, kw_dload, kw_dsload, kw_uplift, kw_temperature, kw_pressure_penetration, &
+            kw_change_friction)
          p%cur%load_loc = here(p)
          p%cur%load_kw = '*'//trim(keywords(id)%name)
       end select

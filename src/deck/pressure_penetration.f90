@@ -12,8 +12,9 @@
 !> It becomes an uplift_t of the pair (uplift_t%pair > 0) that the pressure-penetration
 !> loop of *UPLIFT, PENETRATION drives (vemcontact_driver_penetration) with Abaqus'
 !> law: the pressure is uniform on the part reached from the exposed node through open
-!> nodes and zero beyond.  A static step applies it at once, so PENETRATION TIME is
-!> accepted and has no effect; AMPLITUDE and further data lines are refused.
+!> nodes and zero beyond.  The fluid pressure follows the step's ramp; newly opened
+!> parts take it at once, so PENETRATION TIME is accepted and has no effect;
+!> AMPLITUDE and further data lines are refused.
 module vemcontact_deck_pressure_penetration
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, uplift_t
@@ -49,7 +50,7 @@ contains
       up%loc = here(p)
       if (has_param(kw, 'AMPLITUDE')) then
          call refuse_here(p, '*PRESSURE PENETRATION, AMPLITUDE= is not supported', &
-                          'the fluid pressure acts in full from the start of the step')
+                          'the fluid pressure follows the step''s ramp (*STEP, AMPLITUDE=RAMP or STEP)')
          call skip_data(p)
          return
       end if

@@ -28,7 +28,7 @@ module vemcontact_deck_registry
                                  kw_instance = 40, kw_end_instance = 41, kw_preprint = 42, kw_restart = 43, &
                                  kw_initial_conditions = 44, kw_temperature = 45, kw_expansion = 46, kw_tie = 47, &
                                  kw_amplitude = 48, kw_friction = 49, kw_strength_reduction = 50, &
-                                 kw_pressure_penetration = 51
+                                 kw_pressure_penetration = 51, kw_change_friction = 52
    !> Where a keyword may appear.
    integer, parameter, public :: ctx_model = 1  !< before the first *STEP / between steps
    integer, parameter, public :: ctx_step = 2   !< between *STEP and *END STEP
@@ -60,7 +60,7 @@ module vemcontact_deck_registry
       character(len=40) :: allowed   !< blank-separated allowed values, '' = any
    end type param_spec_t
 
-   type(keyword_spec_t), parameter :: keywords(51) = [ &
+   type(keyword_spec_t), parameter :: keywords(52) = [ &
                                       keyword_spec_t('HEADING', ctx_model, data_optional), &
                                       keyword_spec_t('INCLUDE', ctx_any, data_none), &
                                       keyword_spec_t('NODE', ctx_model, data_optional), &
@@ -109,11 +109,12 @@ module vemcontact_deck_registry
                                       keyword_spec_t('EXPANSION', ctx_model, data_required), &
                                       keyword_spec_t('TIE', ctx_model, data_required), &
                                       keyword_spec_t('AMPLITUDE', ctx_any, data_required), &
-                                      keyword_spec_t('FRICTION', ctx_model, data_optional), &
+                                      keyword_spec_t('FRICTION', ctx_any, data_optional), &
                                       keyword_spec_t('STRENGTH REDUCTION', ctx_step, data_optional), &
-                                      keyword_spec_t('PRESSURE PENETRATION', ctx_step, data_required)]
+                                      keyword_spec_t('PRESSURE PENETRATION', ctx_step, data_required), &
+                                      keyword_spec_t('CHANGE FRICTION', ctx_step, data_none)]
 
-   type(param_spec_t), parameter :: params(162) = [ &
+   type(param_spec_t), parameter :: params(163) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -296,7 +297,9 @@ module vemcontact_deck_registry
                                     ! *FRICTION under *SURFACE INTERACTION (src/deck/contact.f90)
                                     param_spec_t(kw_friction, 'ROUGH', par_flag, .false., val_name, ''), &
                                     ! vemcontact: Mohr-Coulomb cohesion; sign checked by the handler
-                                    param_spec_t(kw_friction, 'COHESION', par_value, .false., val_real, '')]
+                                    param_spec_t(kw_friction, 'COHESION', par_value, .false., val_real, ''), &
+                                    ! *CHANGE FRICTION in a step, followed by its *FRICTION (CalculiX, Abaqus)
+                                    param_spec_t(kw_change_friction, 'INTERACTION', par_value, .true., val_name, '')]
 
    !> CalculiX keywords vemcontact does not support (for a clearer message than "unknown").
    character(len=24), parameter :: calculix_only(21) = [character(len=24) :: &

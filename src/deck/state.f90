@@ -8,7 +8,7 @@ module vemcontact_deck_state
    use vemcontact_kinds, only: wp, ip
    use vemcontact_model, only: model_t, source_loc_t, named_set_t, dof_value_t, dload_t, &
                                find_set, procedure_static, string_t, output_request_t, uplift_t, &
-                               strength_reduction_t
+                               strength_reduction_t, friction_change_t
    use vemcontact_deck_source, only: deck_source_t
    use vemcontact_deck_diagnostics, only: diag_t
    use vemcontact_deck_fields, only: field_list_t, edit_distance, to_upper, squeeze
@@ -37,6 +37,7 @@ module vemcontact_deck_state
       type(dof_value_t), allocatable :: boundary(:), cload(:)
       type(dload_t), allocatable :: dload(:)
       type(uplift_t), allocatable :: uplift(:)   !< *UPLIFT (vemcontact)
+      type(friction_change_t), allocatable :: friction_changes(:)   !< *CHANGE FRICTION
       type(dof_value_t), allocatable :: temperature(:)   !< *TEMPERATURE (or initial T0)
       integer :: nt = 0
       logical :: tnew = .false.
@@ -94,6 +95,10 @@ module vemcontact_deck_state
       type(item_list_t) :: reduced            !< elements of the reduced-integration types (CPE8R/CPS8R)
       integer :: cur_mat = 0                !< material that *ELASTIC and *DENSITY apply to
       integer :: cur_inter = 0              !< interaction that *SURFACE BEHAVIOR applies to, -1 = dropped
+      !> in a step, the interaction of the *CHANGE FRICTION that the next *FRICTION
+      !> changes (-1: the *CHANGE FRICTION line was wrong), and where it is
+      integer :: change_inter = 0
+      type(source_loc_t) :: change_loc
       !> AMPLITUDE= of the load keyword being read: index into model%amplitudes, 0 = none
       integer :: amp = 0
       logical :: in_step = .false.

@@ -11,7 +11,7 @@
 !> increment of a step ends exactly at the step's period.
 module vemcontact_driver_increments
    use vemcontact_kinds, only: wp
-   use vemcontact_model, only: step_t, amplitude_t, dload_t, procedure_geostatic
+   use vemcontact_model, only: step_t, amplitude_t, dload_t, uplift_t, procedure_geostatic
    use vemcontact_driver_load_state, only: load_state_t
    implicit none
    private
@@ -163,7 +163,9 @@ contains
    !> start of the step.  AMPLITUDE=RAMP: a value goes linearly from its value at the
    !> end of the previous step (a prescribed displacement from the displacement at
    !> the start of the step; a load removed with OP=NEW goes to zero) to the step's
-   !> value; AMPLITUDE=STEP: the step's values at once.  A value with an *AMPLITUDE
+   !> value; AMPLITUDE=STEP: the step's values at once.  Temperatures and the water
+   !> in the joints (*UPLIFT, *PRESSURE PENETRATION) follow the step's ramp
+   !> (ramp_temperatures, ramp_uplifts).  A value with an *AMPLITUDE
    !> is the step's value times the amplitude at the step or total time.  At frac = 1
    !> without amplitudes the result is `cur`'s values exactly.  The result has no
    !> amplitudes left (amp = 0, values evaluated).
@@ -197,6 +199,10 @@ contains
             st%force(d) = prev%force(d) + frac*(cur%force(d) - prev%force(d))
          end if
       end do
+      if (ramp) then
+         call ramp_temperatures(cur, prev, frac, st)
+         call ramp_uplifts(cur%uplift, prev%uplift, frac, st%uplift)
+      end if
       ! distributed loads: the step's scaled by frac (or their amplitude), and with a
       ! ramp the previous step's applied ones scaled by 1 - frac, except those that
       ! the step gives an amplitude (the amplitude alone sets them)
@@ -233,4 +239,57 @@ contains
          end if
       end function amp_at
    end function loads_at
+
+   !> With a ramp, the temperatures go linearly from those at the end of the
+   !> previous step to the step's, as CalculiX's (T - T0 follows them).
+   pure subroutine ramp_temperatures(cur, prev, frac, st)
+      type(load_state_t), intent(in) :: cur, prev
+      real(wp), intent(in) :: frac
+      type(load_state_t), intent(inout) :: st
+      if (.not. (allocated(cur%temp) .and. allocated(prev%temp))) return
+      st%temp = prev%temp + frac*(cur%temp - prev%temp)
+      st%dtemp = st%temp - st%temp0
+   end subroutine ramp_temperatures
+
+   !> With a ramp, the water in the joints at `frac` of the step.  An uplift the step
+   !> brings in (none before on its interaction or pair) acts with frac of its
+   !> pressures.  One that the step changes keeps its geometry (heel, toe, drain
+   !> line, pressure penetration or not) and has its heads, drain effectiveness,
+   !> unit weight and fluid pressure go linearly from the previous step's values:
+   !> the pressures, affine in each of them, go linearly from the old distribution to
+   !> the new one (with a head and the drain effectiveness changed together, their
+   !> product makes the path between the two slightly curved).  One that the step
+   !> gives a new geometry replaces the old at once, as with AMPLITUDE=STEP.
+   pure subroutine ramp_uplifts(cur, prev, frac, st)
+      type(uplift_t), intent(in) :: cur(:), prev(:)
+      real(wp), intent(in) :: frac
+      type(uplift_t), intent(inout) :: st(:)
+      integer :: k, j
+      do k = 1, size(cur)
+         j = findloc(prev%interaction == cur(k)%interaction .and. prev%pair == cur(k)%pair, .true., dim=1)
+         if (j == 0) then
+            st(k)%factor = frac*cur(k)%factor
+         else if (same_geometry(cur(k), prev(j))) then
+            st(k)%head_heel = lerp(prev(j)%head_heel, cur(k)%head_heel)
+            st(k)%head_toe = lerp(prev(j)%head_toe, cur(k)%head_toe)
+            st(k)%effectiveness = lerp(prev(j)%effectiveness, cur(k)%effectiveness)
+            st(k)%gamma = lerp(prev(j)%gamma, cur(k)%gamma)
+            st(k)%fluid_pressure = lerp(prev(j)%fluid_pressure, cur(k)%fluid_pressure)
+         end if
+      end do
+   contains
+      pure real(wp) function lerp(a, b)
+         real(wp), intent(in) :: a, b
+         lerp = a + frac*(b - a)
+      end function lerp
+   end subroutine ramp_uplifts
+
+   !> Whether two uplifts have the same heel, toe, drain line and kind.
+   pure logical function same_geometry(a, b)
+      type(uplift_t), intent(in) :: a, b
+      same_geometry = all(a%heel == b%heel) .and. all(a%toe == b%toe) .and. (a%drained .eqv. b%drained) .and. &
+                      (a%penetration .eqv. b%penetration) .and. a%exposed_slave == b%exposed_slave .and. &
+                      a%exposed_master == b%exposed_master
+      if (same_geometry .and. a%drained) same_geometry = all(a%drain == b%drain)
+   end function same_geometry
 end module vemcontact_driver_increments

@@ -32,43 +32,90 @@ module vemcontact_driver_ranges
    !> kernels' sums and ratios a margin of 1e50 below the double range's 1e308).
    real(wp), parameter :: value_log = 130.0_wp, product_log = 250.0_wp
 
+   !> What the checks gather on their way: the model's extent and thickness
+   !> (log10), the stiffness bounds with the section of the least, the largest
+   !> load force with its step, and the messages.
+   type :: range_check_t
+      real(wp) :: lext = 0.0_wp, lt = 0.0_wp
+      real(wp) :: kmax = -huge(1.0_wp), kmin = huge(1.0_wp), fmax = -huge(1.0_wp)
+      type(source_loc_t) :: kmin_loc, fmax_loc
+      type(error_t), allocatable :: error
+   end type range_check_t
+
 contains
 
+   !> Every magnitude check of the model; all problems in one error.
    subroutine validate_ranges(model, error)
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: error
-      real(wp) :: lext, kmax, kmin, lk, fmax, thick_max, lt
-      type(source_loc_t) :: kmin_loc, fmax_loc
-      integer :: k, m, is
-      character(len=:), allocatable :: what
+      type(range_check_t) :: c
+      integer :: k
 
-      ! extent of the model: the largest coordinate difference (at least the
-      ! smallest positive one the checks of the elements allow)
-      ! (halves: the difference of two coordinates near the double range's end would
-      ! overflow; this check may run before the elements' own coordinate check)
+      c%lext = model_extent(model)
+      call check_materials(model, c)
+      call check_sections(model, c)
+      call check_interactions(model, c)
+      if (allocated(c%error)) then
+         call move_alloc(c%error, error)
+         return
+      end if
+
+      ! loads of every step: values, the forces they make, and the displacements
+      call check_step_loads(model, model%initial, c)
+      if (allocated(model%steps)) then
+         do k = 1, size(model%steps)
+            call check_step_loads(model, model%steps(k), c)
+         end do
+      end if
+      if (.not. allocated(c%error) .and. c%fmax > -huge(1.0_wp) .and. c%kmin < huge(1.0_wp)) then
+         call product(model, c, c%fmax - c%kmin, 'the displacement the loads make (largest force / '// &
+                      'least stiffness, the stiffness of this section', c%kmin_loc)
+         if (allocated(c%error)) call append_message(c%error, where(model, c%fmax_loc)// &
+                                                     ': note: the largest force comes from the loads of this step', &
+                                                     err_input)
+      end if
+      if (allocated(c%error)) call move_alloc(c%error, error)
+   end subroutine validate_ranges
+
+   !> log10 of the model's extent, the largest coordinate difference (at least the
+   !> smallest positive one the checks of the elements allow).  Halves: the
+   !> difference of two coordinates near the double range's end would overflow, and
+   !> this check may run before the elements' own coordinate check.
+   real(wp) function model_extent(model) result(lext)
+      type(model_t), intent(in) :: model
       lext = 0.0_wp
       if (model%nnode > 0) lext = maxval(0.5_wp*maxval(model%x(:, 1:model%nnode), dim=2) - &
                                          0.5_wp*minval(model%x(:, 1:model%nnode), dim=2))
       lext = log10(max(lext, 0.5e-130_wp)) + log10(2.0_wp)
+   end function model_extent
 
-      ! single values
-      if (allocated(model%materials)) then
-         do m = 1, size(model%materials)
-            associate (mat => model%materials(m))
-               what = 'material '//mat%name
-               call one(mat%young, 'Young''s modulus of '//what, mat%loc)
-               call one(mat%density, 'density of '//what, mat%loc)
-            end associate
-         end do
-      end if
+   !> Young's modulus and density of every material.
+   subroutine check_materials(model, c)
+      type(model_t), intent(in) :: model
+      type(range_check_t), intent(inout) :: c
+      integer :: m
+      if (.not. allocated(model%materials)) return
+      do m = 1, size(model%materials)
+         associate (mat => model%materials(m))
+            call one(model, c, mat%young, 'Young''s modulus of material '//mat%name, mat%loc)
+            call one(model, c, mat%density, 'density of material '//mat%name, mat%loc)
+         end associate
+      end do
+   end subroutine check_materials
+
+   !> Thickness and STABILIZATION of every section, its stiffness and mass scales;
+   !> keeps the stiffness bounds and the largest thickness.
+   subroutine check_sections(model, c)
+      type(model_t), intent(in) :: model
+      type(range_check_t), intent(inout) :: c
+      real(wp) :: thick_max, lk
+      integer :: is
       thick_max = 0.0_wp
-      kmax = -huge(1.0_wp)
-      kmin = huge(1.0_wp)
       if (allocated(model%sections)) then
          do is = 1, size(model%sections)
             associate (s => model%sections(is))
-               call one(s%thickness, 'thickness of the section of '//s%elset, s%loc)
-               call one(s%stabilization, 'STABILIZATION of the section of '//s%elset, s%loc)
+               call one(model, c, s%thickness, 'thickness of the section of '//s%elset, s%loc)
+               call one(model, c, s%stabilization, 'STABILIZATION of the section of '//s%elset, s%loc)
                thick_max = max(thick_max, s%thickness)
                if (s%imat < 1 .or. .not. allocated(model%materials)) cycle
                if (s%imat > size(model%materials)) cycle
@@ -77,151 +124,148 @@ contains
                   if (.not. within(mat%young) .or. .not. within(s%thickness) .or. &
                       .not. within(s%stabilization)) cycle
                   lk = log10(mat%young) + log10(s%thickness) + max(0.0_wp, lg(s%stabilization))
-                  call product(lk, 'the stiffness of the section of '//s%elset//' (E * thickness * '// &
-                               'STABILIZATION', s%loc)
-                  if (lk > kmax) kmax = lk
-                  if (lk < kmin) then
-                     kmin = lk
-                     kmin_loc = s%loc
+                  call product(model, c, lk, 'the stiffness of the section of '//s%elset// &
+                               ' (E * thickness * STABILIZATION', s%loc)
+                  c%kmax = max(c%kmax, lk)
+                  if (lk < c%kmin) then
+                     c%kmin = lk
+                     c%kmin_loc = s%loc
                   end if
                   if (mat%density > 0.0_wp .and. within(mat%density)) &
-                     call product(log10(mat%density) + log10(s%thickness) + 2.0_wp*lext, &
+                     call product(model, c, log10(mat%density) + log10(s%thickness) + 2.0_wp*c%lext, &
                                   'the mass of the section of '//s%elset//' (density * thickness * '// &
                                   'extent^2', s%loc)
                end associate
             end associate
          end do
       end if
-      lt = lg(thick_max)
-      if (allocated(model%interactions)) then
-         do k = 1, size(model%interactions)
-            associate (it => model%interactions(k))
-               call one(it%penalty, 'the pressure-overclosure slope of '//it%name, it%loc)
-               if (it%penalty > 0.0_wp .and. within(it%penalty)) &
-                  call product(log10(it%penalty) + lt + lext, 'the contact stiffness of '//it%name// &
-                               ' (slope * thickness * extent', it%loc)
+      c%lt = lg(thick_max)
+   end subroutine check_sections
+
+   !> The penalty slope of every contact interaction and its contact stiffness.
+   subroutine check_interactions(model, c)
+      type(model_t), intent(in) :: model
+      type(range_check_t), intent(inout) :: c
+      integer :: k
+      if (.not. allocated(model%interactions)) return
+      do k = 1, size(model%interactions)
+         associate (it => model%interactions(k))
+            call one(model, c, it%penalty, 'the pressure-overclosure slope of '//it%name, it%loc)
+            if (it%penalty > 0.0_wp .and. within(it%penalty)) &
+               call product(model, c, log10(it%penalty) + c%lt + c%lext, 'the contact stiffness of '// &
+                            it%name//' (slope * thickness * extent', it%loc)
+         end associate
+      end do
+   end subroutine check_interactions
+
+   !> The load values of one step and the forces they make (the largest kept).
+   subroutine check_step_loads(model, st, c)
+      type(model_t), intent(in) :: model
+      type(step_t), intent(in) :: st
+      type(range_check_t), intent(inout) :: c
+      real(wp) :: lf
+      integer :: j
+      if (allocated(st%boundary)) then
+         do j = 1, size(st%boundary)
+            associate (b => st%boundary(j))
+               call one(model, c, b%value, 'prescribed displacement', st%loc, node=b%node)
+               if (abs(b%value) > 0.0_wp .and. within(b%value) .and. c%kmax > -huge(1.0_wp)) then
+                  lf = lg(b%value) + c%kmax
+                  call product(model, c, lf, 'the force of a prescribed displacement (stiffness * value', st%loc)
+                  call keep(c, lf, st%loc)
+               end if
             end associate
          end do
       end if
-      if (allocated(error)) return
-
-      ! loads of every step: values, the forces they make, and the displacements
-      fmax = -huge(1.0_wp)
-      call step_loads(model%initial)
-      if (allocated(model%steps)) then
-         do k = 1, size(model%steps)
-            call step_loads(model%steps(k))
+      if (allocated(st%cload)) then
+         do j = 1, size(st%cload)
+            call one(model, c, st%cload(j)%value, 'concentrated load', st%loc, node=st%cload(j)%node)
+            if (abs(st%cload(j)%value) > 0.0_wp .and. within(st%cload(j)%value)) &
+               call keep(c, lg(st%cload(j)%value), st%loc)
          end do
       end if
-      if (allocated(error)) return
-      if (fmax > -huge(1.0_wp) .and. kmin < huge(1.0_wp)) then
-         call product(fmax - kmin, 'the displacement the loads make (largest force / least stiffness, '// &
-                      'the stiffness of this section', kmin_loc)
-         if (allocated(error)) call append_message(error, where(fmax_loc)// &
-                                                   ': note: the largest force comes from the loads of this step', &
-                                                   err_input)
+      if (allocated(st%dload)) then
+         do j = 1, size(st%dload)
+            associate (d => st%dload(j))
+               call one(model, c, d%magnitude, 'distributed load', st%loc)
+               if (.not. (abs(d%magnitude) > 0.0_wp .and. within(d%magnitude))) cycle
+               select case (d%kind)
+               case (dload_grav)
+                  ! with the largest density: the mass check bounds density * t * L^2
+                  lf = lg(d%magnitude) + lg(max_density(model)) + c%lt + 2.0_wp*c%lext
+               case (dload_pressure, dload_hydrostatic)
+                  lf = lg(d%magnitude) + c%lt + c%lext
+               case default
+                  cycle
+               end select
+               call product(model, c, lf, 'the force of a distributed load (magnitude * thickness * extent', &
+                            st%loc)
+               call keep(c, lf, st%loc)
+            end associate
+         end do
       end if
+   end subroutine check_step_loads
 
-   contains
+   !> A value within 1e-130 .. 1e130 in magnitude, or 0.
+   subroutine one(model, c, v, name, loc, node)
+      type(model_t), intent(in) :: model
+      type(range_check_t), intent(inout) :: c
+      real(wp), intent(in) :: v
+      character(len=*), intent(in) :: name
+      type(source_loc_t), intent(in) :: loc
+      integer(ip), intent(in), optional :: node
+      character(len=40) :: b
+      character(len=:), allocatable :: on
+      if (within(v)) return
+      write (b, '(es10.2e3)') v
+      on = ''
+      if (present(node)) then
+         write (b(21:40), '(i0)') model%node_id(node)
+         on = ' at node '//trim(b(21:40))
+      end if
+      call append_message(c%error, where(model, loc)//': error: '//name//' = '// &
+                          trim(adjustl(b(1:20)))//on//' is beyond 1e-130 .. 1e130 in magnitude: '// &
+                          'choose units that bring it into range', err_input)
+   end subroutine one
 
-      !> The load values of one step, the forces they make (kept in fmax).
-      subroutine step_loads(st)
-         type(step_t), intent(in) :: st
-         real(wp) :: lf
-         integer :: j
-         if (allocated(st%boundary)) then
-            do j = 1, size(st%boundary)
-               call one(st%boundary(j)%value, 'prescribed displacement', st%loc, node=st%boundary(j)%node)
-               if (abs(st%boundary(j)%value) > 0.0_wp .and. within(st%boundary(j)%value) .and. &
-                   kmax > -huge(1.0_wp)) then
-                  lf = lg(st%boundary(j)%value) + kmax
-                  call product(lf, 'the force of a prescribed displacement (stiffness * value', st%loc)
-                  call keep(lf, st%loc)
-               end if
-            end do
-         end if
-         if (allocated(st%cload)) then
-            do j = 1, size(st%cload)
-               call one(st%cload(j)%value, 'concentrated load', st%loc, node=st%cload(j)%node)
-               if (abs(st%cload(j)%value) > 0.0_wp .and. within(st%cload(j)%value)) &
-                  call keep(lg(st%cload(j)%value), st%loc)
-            end do
-         end if
-         if (allocated(st%dload)) then
-            do j = 1, size(st%dload)
-               associate (d => st%dload(j))
-                  call one(d%magnitude, 'distributed load', st%loc)
-                  if (.not. (abs(d%magnitude) > 0.0_wp .and. within(d%magnitude))) cycle
-                  select case (d%kind)
-                  case (dload_grav)
-                     ! with the largest density: the mass check above bounds density * t * L^2
-                     lf = lg(d%magnitude) + lg(max_density(model)) + lt + 2.0_wp*lext
-                  case (dload_pressure, dload_hydrostatic)
-                     lf = lg(d%magnitude) + lt + lext
-                  case default
-                     cycle
-                  end select
-                  call product(lf, 'the force of a distributed load (magnitude * thickness * extent', st%loc)
-                  call keep(lf, st%loc)
-               end associate
-            end do
-         end if
-      end subroutine step_loads
+   !> An estimated product (log10) within 1e-250 .. 1e250.  `name` ends in an
+   !> open parenthesis that the estimate closes.
+   subroutine product(model, c, lp, name, loc)
+      type(model_t), intent(in) :: model
+      type(range_check_t), intent(inout) :: c
+      real(wp), intent(in) :: lp
+      character(len=*), intent(in) :: name
+      type(source_loc_t), intent(in) :: loc
+      character(len=16) :: b
+      if (abs(lp) <= product_log) return
+      write (b, '(f8.1)') lp
+      call append_message(c%error, where(model, loc)//': error: '//name//' is about 1e'// &
+                          trim(adjustl(b(1:index(b, '.') - 1)))//'), beyond 1e-250 .. 1e250: the '// &
+                          'computation would over- or underflow; choose units that bring the values '// &
+                          'into range', err_input)
+   end subroutine product
 
-      !> A value within 1e-130 .. 1e130 in magnitude, or 0.
-      subroutine one(v, name, loc, node)
-         real(wp), intent(in) :: v
-         character(len=*), intent(in) :: name
-         type(source_loc_t), intent(in) :: loc
-         integer(ip), intent(in), optional :: node
-         character(len=40) :: b
-         character(len=:), allocatable :: on
-         if (within(v)) return
-         write (b, '(es10.2e3)') v
-         on = ''
-         if (present(node)) then
-            write (b(21:40), '(i0)') model%node_id(node)
-            on = ' at node '//trim(b(21:40))
-         end if
-         call append_message(error, where(loc)//': error: '//name//' = '// &
-                             trim(adjustl(b(1:20)))//on//' is beyond 1e-130 .. 1e130 in magnitude: '// &
-                             'choose units that bring it into range', err_input)
-      end subroutine one
+   !> Keeps the largest load force (log10) and where it comes from.
+   pure subroutine keep(c, lf, loc)
+      type(range_check_t), intent(inout) :: c
+      real(wp), intent(in) :: lf
+      type(source_loc_t), intent(in) :: loc
+      if (lf > c%fmax) then
+         c%fmax = lf
+         c%fmax_loc = loc
+      end if
+   end subroutine keep
 
-      !> An estimated product (log10) within 1e-250 .. 1e250.  `name` ends in an
-      !> open parenthesis that the estimate closes.
-      subroutine product(lp, name, loc)
-         real(wp), intent(in) :: lp
-         character(len=*), intent(in) :: name
-         type(source_loc_t), intent(in) :: loc
-         character(len=16) :: b
-         if (abs(lp) <= product_log) return
-         write (b, '(f8.1)') lp
-         call append_message(error, where(loc)//': error: '//name//' is about 1e'// &
-                             trim(adjustl(b(1:index(b, '.') - 1)))//'), beyond 1e-250 .. 1e250: the '// &
-                             'computation would over- or underflow; choose units that bring the values '// &
-                             'into range', err_input)
-      end subroutine product
-
-      subroutine keep(lf, loc)
-         real(wp), intent(in) :: lf
-         type(source_loc_t), intent(in) :: loc
-         if (lf > fmax) then
-            fmax = lf
-            fmax_loc = loc
-         end if
-      end subroutine keep
-
-      !> file:line of `loc`; loads before the first *STEP have none: the deck's name.
-      function where(loc) result(w)
-         type(source_loc_t), intent(in) :: loc
-         character(len=:), allocatable :: w
-         w = location_string(model, loc)
-         if (loc%file < 1 .and. allocated(model%files)) then
-            if (size(model%files) > 0) w = model%files(1)%s//' (before the first *STEP)'
-         end if
-      end function where
-   end subroutine validate_ranges
+   !> file:line of `loc`; loads before the first *STEP have none: the deck's name.
+   function where(model, loc) result(w)
+      type(model_t), intent(in) :: model
+      type(source_loc_t), intent(in) :: loc
+      character(len=:), allocatable :: w
+      w = location_string(model, loc)
+      if (loc%file < 1 .and. allocated(model%files)) then
+         if (size(model%files) > 0) w = model%files(1)%s//' (before the first *STEP)'
+      end if
+   end function where
 
    !> 0 or a finite magnitude within 1e-130 .. 1e130 (NaN is neither).
    pure logical function within(v)

@@ -46,6 +46,7 @@ module vemcontact_driver_static
    use vemcontact_driver_inserted_values, only: interpolate_inserted
    use vemcontact_contact_friction, only: tangent_stick, tangent_slip
    use vemcontact_log, only: logger_t
+   use vemcontact_contact_tangential, only: friction_params_t
    use vemcontact_driver_strength_reduction, only: srm_result_t, run_strength_reduction, reduced_strength
    use vemcontact_output_srm, only: write_srm_csv
    use vemcontact_interrupt, only: interrupt_error, interrupt_context, is_interrupt, err_interrupt_base
@@ -453,6 +454,27 @@ contains
       end do
    end subroutine run_increments
 
+   !> The step's *CHANGE FRICTION: the pairs of each interaction named take its law
+   !> from the state the step starts from (contact_state_t%change_friction).
+   subroutine change_friction_laws(model, rs, istep, log, error)
+      type(model_t), intent(in) :: model
+      type(run_state_t), intent(inout) :: rs
+      integer, intent(in) :: istep
+      type(logger_t), intent(inout) :: log
+      type(error_t), allocatable, intent(out) :: error
+      integer :: k
+      if (.not. allocated(model%steps(istep)%friction_changes)) return
+      if (rs%contact%n == 0) return
+      do k = 1, size(model%steps(istep)%friction_changes)
+         associate (c => model%steps(istep)%friction_changes(k))
+            call rs%contact%change_friction(model, rs%u, c%interaction, &
+                                            friction_params_t(.true., c%rough, c%mu, c%stick_slope, c%cohesion), error)
+            if (allocated(error)) return
+            call log%say('  friction of interaction '//model%interactions(c%interaction)%name//' changed')
+         end associate
+      end do
+   end subroutine change_friction_laws
+
    !> Step `istep`: its increments (or the trials of a strength reduction step), then
    !> the post-processing and output of its end.
    subroutine run_step(model, opts, log, rs, istep, error)
@@ -467,6 +489,8 @@ contains
       log%step = istep
       call log%say('step '//step_name(model, istep))
       call advance_load_state(model%steps(istep), rs%given)
+      call change_friction_laws(model, rs, istep, log, error)
+      if (allocated(error)) return
       if (model%steps(istep)%procedure == procedure_strength_reduction) then
          ! the loads in force at the end of the previous step (the step has none of its
          ! own, and amplitudes are not evaluated anew), the trials instead of the increments
@@ -833,7 +857,7 @@ contains
    end subroutine write_contact_results
 
    !> The friction coefficient and cohesion of pair ip_ in force in step istep: those
-   !> of its interaction, divided by the factor of safety in a strength reduction step.
+   !> of its interaction (or of a *CHANGE FRICTION), divided by the factor of safety in a strength reduction step.
    function strength_in_force(model, rs, istep, ip_) result(s)
       type(model_t), intent(in) :: model
       type(run_state_t), intent(in) :: rs
@@ -842,7 +866,7 @@ contains
       real(wp) :: f
       f = 1.0_wp
       if (model%steps(istep)%procedure == procedure_strength_reduction) f = rs%srm%f_lower
-      call reduced_strength(model, model%steps(istep)%srm, ip_, f, s(1), s(2))
+      call reduced_strength(model, model%steps(istep)%srm, rs%contact, ip_, f, s(1), s(2))
    end function strength_in_force
 
    !> The factor of safety of a strength reduction step in the log.

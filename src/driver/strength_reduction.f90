@@ -64,32 +64,34 @@ module vemcontact_driver_strength_reduction
 
 contains
 
-   !> The friction coefficient and cohesion of pair p's interaction at factor f (f = 1:
-   !> as given); interactions that the step does not reduce keep theirs.
-   pure subroutine reduced_strength(model, srm, p, f, mu, c)
+   !> The friction coefficient and cohesion of pair p at factor f (f = 1: those in
+   !> force, the interaction's or a *CHANGE FRICTION's); pairs that the step does not
+   !> reduce keep theirs.
+   pure subroutine reduced_strength(model, srm, contact, p, f, mu, c)
       type(model_t), intent(in) :: model
       type(strength_reduction_t), intent(in) :: srm
+      type(contact_state_t), intent(in) :: contact
       integer, intent(in) :: p
       real(wp), intent(in) :: f
       real(wp), intent(out) :: mu, c
-      integer :: k
-      k = model%pairs(p)%interaction
-      mu = model%interactions(k)%mu
-      c = model%interactions(k)%cohesion
-      if (.not. reduced(model, srm, k)) return
+      mu = contact%fric%params(p)%mu
+      c = contact%fric%params(p)%cohesion
+      if (.not. reduced(model, srm, contact, p)) return
       mu = mu/f
       c = c/f
    end subroutine reduced_strength
 
-   !> Whether interaction k is reduced: the one named, or every Coulomb/Mohr-Coulomb one.
-   pure logical function reduced(model, srm, k)
+   !> Whether pair p is reduced: a Coulomb/Mohr-Coulomb law in force, on the
+   !> interaction named (or any).
+   pure logical function reduced(model, srm, contact, p)
       type(model_t), intent(in) :: model
       type(strength_reduction_t), intent(in) :: srm
-      integer, intent(in) :: k
-      associate (it => model%interactions(k))
-         reduced = it%has_friction .and. .not. it%rough .and. (it%mu > 0.0_wp .or. it%cohesion > 0.0_wp)
+      type(contact_state_t), intent(in) :: contact
+      integer, intent(in) :: p
+      associate (prm => contact%fric%params(p))
+         reduced = prm%has_friction .and. .not. prm%rough .and. (prm%mu > 0.0_wp .or. prm%cohesion > 0.0_wp)
       end associate
-      if (srm%interaction > 0) reduced = reduced .and. k == srm%interaction
+      if (srm%interaction > 0) reduced = reduced .and. model%pairs(p)%interaction == srm%interaction
    end function reduced
 
    !> The strength reduction step: trials from the base state (u, contact), then from
@@ -280,8 +282,8 @@ contains
       r = 0.0_wp
       if (.not. allocated(contact%balanced)) return
       do p = 1, size(model%pairs)
-         if (.not. reduced(model, srm, model%pairs(p)%interaction)) cycle
-         call reduced_strength(model, srm, p, 1.0_wp, mu, c)
+         if (.not. reduced(model, srm, contact, p)) cycle
+         call reduced_strength(model, srm, contact, p, 1.0_wp, mu, c)
          strength = 0.0_wp
          shear = 0.0_wp
          scale = 0.0_wp
@@ -310,10 +312,10 @@ contains
       real(wp) :: mu, c
       integer :: p
       do p = 1, size(model%pairs)
-         associate (it => model%interactions(model%pairs(p)%interaction))
-            if (.not. reduced(model, srm, model%pairs(p)%interaction)) cycle
-            call reduced_strength(model, srm, p, f, mu, c)
-            call make_law(it%has_friction, it%rough, mu, it%stick_slope, c, contact%fric%laws(p))
+         if (.not. reduced(model, srm, contact, p)) cycle
+         call reduced_strength(model, srm, contact, p, f, mu, c)
+         associate (prm => contact%fric%params(p))
+            call make_law(prm%has_friction, prm%rough, mu, prm%slope, c, contact%fric%laws(p))
          end associate
       end do
    end subroutine set_laws

@@ -142,7 +142,7 @@ program test_deck_contact_errors
                '*FRICTION, ROUGH takes no data line')
    call expect('fric_twice', with_block(cbi(7, '*FRICTION'//nl//'0.3'//nl//'*FRICTION'//nl//'0.2')), 17, &
                'surface interaction I already has *FRICTION')
-   call expect('fric_in_step', ins(15, '*FRICTION'//nl//'0.3'), 16, '*FRICTION is not allowed inside a *STEP')
+   call expect('fric_in_step', ins(15, '*FRICTION'//nl//'0.3'), 16, '*FRICTION inside a *STEP must follow *CHANGE FRICTION')
    call expect('inter_twice', with_block(cbi(7, '*SURFACE INTERACTION, NAME=I')), 15, &
                'surface interaction I already defined at ')
    call expect('inter_data', with_block(cbi(5, '1.')), 13, &
