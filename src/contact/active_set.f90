@@ -26,7 +26,8 @@ module vemcontact_contact_active_set
                                         contact_graph_pairs, median
    use vemcontact_contact_geometry, only: relative_map, contact_stiffness, project_point_segment, seg_ok, &
                                           length2, contact_slip, segment_normal, segment_is_degenerate, &
-                                          projection_gradient, sliding_tangent, common_normal
+                                          projection_gradient, sliding_tangent, common_normal, ray_projection, &
+                                          ray_gradient
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_sparse_pattern, only: add_element_matrix
    use vemcontact_contact_spring, only: spring_t
@@ -44,6 +45,11 @@ module vemcontact_contact_active_set
    !> master vertex can flip between the two segments from one iteration to the
    !> next when the master bends there (each solve makes the other one closer).
    real(wp), parameter, public :: pairing_hysteresis = 0.05_wp
+
+   !> Finite sliding: the most segments the point along the reference normal
+   !> (ray_pair) is followed from the closest one; it is next to it on a polyline
+   !> whose reference normals turn by less than a right angle per segment.
+   integer, parameter :: ray_walk_limit = 4
 
    !> A reference gap g0 within this many units of round-off of the coordinates
    !> involved (eps times their largest magnitude) is taken as exactly zero.  Surfaces
@@ -670,6 +676,7 @@ contains
             do i = lo, hi
                call keep_previous(i, prev(i - lo + 1))
                if (self%iseg(i) == 0) cycle
+               if (.not. pd%small_sliding) call ray_pair(i, pd%seg, grid)
                a = pd%seg(1, self%iseg(i))
                b = pd%seg(2, self%iseg(i))
                ! the reference segment's normal (a segment of zero length in the mesh
@@ -731,7 +738,11 @@ contains
          integer(ip), intent(in) :: a, b
          real(wp) :: t(2)
          self%slide_c(i) = dot_product(self%normal(:, i), u(2*b - 1:2*b) - u(2*a - 1:2*a))
-         self%slide_w(:, i) = projection_gradient(self%xi(i), current(self%node(i)), current(a), current(b))
+         if (segment_is_degenerate(model%x(:, a), model%x(:, b))) then
+            self%slide_w(:, i) = projection_gradient(self%xi(i), current(self%node(i)), current(a), current(b))
+         else
+            self%slide_w(:, i) = ray_gradient(self%xi(i), current(a), current(b), model%x(:, b) - model%x(:, a))
+         end if
          t = tangent_of(self%normal(:, i))
          self%slide_s0(i) = self%pairs(self%pair(i))%arc(self%iseg(i)) + &
                             dot_product(t, model%x(:, self%node(i)) - model%x(:, a))
@@ -753,6 +764,68 @@ contains
          period = self%pairs(self%pair(i))%period(self%iseg(i))
          if (period > 0.0_wp) self%fric%anchor(i) = self%fric%anchor(i) + period*anint((sl - self%fric%anchor(i))/period)
       end subroutine carry_anchor
+
+      !> Finite sliding: entry i moves to the point of the master surface on the line
+      !> through its slave node along the reference normal (ray_projection), walking
+      !> from the closest segment to its neighbours while that point lies beyond the
+      !> segment's ends.  Where the lines of two neighbours leave a wedge between them
+      !> (a vertex where the reference normals turn away from the slave) the node keeps
+      !> the segment it overshoots less.  A segment of zero length in the mesh keeps
+      !> the closest point.
+      subroutine ray_pair(i, seg, grid)
+         integer, intent(in) :: i
+         integer(ip), intent(in) :: seg(:, :)
+         type(segment_grid_t), intent(in) :: grid
+         integer(ip) :: j, nb, from
+         real(wp) :: xi, xin
+         logical :: ok, take
+         integer :: step
+         j = self%iseg(i)
+         call ray_xi(i, seg(:, j), xi, ok)
+         if (.not. ok) return
+         from = 0
+         do step = 1, ray_walk_limit
+            nb = 0
+            if (xi < 0.0_wp) nb = grid%prev(j)
+            if (xi > 1.0_wp) nb = grid%next(j)
+            if (nb == 0 .or. nb == from) exit
+            call ray_xi(i, seg(:, nb), xin, ok)
+            if (.not. ok) exit
+            take = .true.
+            ! the wedge: the neighbour's point is back beyond the vertex they share
+            if (xi < 0.0_wp .and. xin > 1.0_wp) &
+               take = (xin - 1.0_wp)*seg_length(seg(:, nb)) < -xi*seg_length(seg(:, j))
+            if (xi > 1.0_wp .and. xin < 0.0_wp) &
+               take = -xin*seg_length(seg(:, nb)) < (xi - 1.0_wp)*seg_length(seg(:, j))
+            if (take) then
+               from = j
+               j = nb
+               xi = xin
+            end if
+            if (.not. take .or. (xin >= 0.0_wp .and. xin <= 1.0_wp)) exit
+         end do
+         self%iseg(i) = j
+         self%xi(i) = xi
+      end subroutine ray_pair
+
+      !> ray_projection of entry i's slave node on the segment sg (ok = .false. for a
+      !> segment of zero length in the mesh or turned by a right angle).
+      subroutine ray_xi(i, sg, xi, ok)
+         integer, intent(in) :: i
+         integer(ip), intent(in) :: sg(2)
+         real(wp), intent(out) :: xi
+         logical, intent(out) :: ok
+         xi = 0.0_wp
+         ok = .not. segment_is_degenerate(model%x(:, sg(1)), model%x(:, sg(2)))
+         if (ok) call ray_projection(current(self%node(i)), current(sg(1)), current(sg(2)), &
+                                     model%x(:, sg(2)) - model%x(:, sg(1)), xi, ok)
+      end subroutine ray_xi
+
+      !> current length of the segment sg
+      real(wp) function seg_length(sg) result(l)
+         integer(ip), intent(in) :: sg(2)
+         l = length2(current(sg(2)) - current(sg(1)))
+      end function seg_length
 
       subroutine keep_previous(i, iprev)
          integer, intent(in) :: i

@@ -17,7 +17,7 @@ module vemcontact_contact_geometry
    private
 
    public :: project_point_segment, relative_map, contact_force, contact_stiffness
-   public :: segment_normal, projection_gradient, sliding_tangent
+   public :: segment_normal, projection_gradient, sliding_tangent, ray_projection, ray_gradient
    public :: contact_energy, contact_pressure, contact_slip, segment_is_degenerate, length2
    public :: common_normal
 
@@ -150,15 +150,49 @@ contains
       w = (matmul(t, relative_map(xi)) + [0.0_wp, 0.0_wp, -d, d])/dot_product(t, t)
    end function projection_gradient
 
+   !> The point of the current segment xa -> xb that the line through xs along the
+   !> reference normal meets (the normal of the reference segment, whose direction
+   !> is tref): the normalized parameter xi = tref.(xs - xa) / tref.(xb - xa), so
+   !> that xs - x_xi is parallel to the reference normal and the gap
+   !> n.(xs - x_xi) is the distance along it.  Unlike the closest point, this
+   !> meets a polyline whose reference normals agree once, and the gap is
+   !> continuous where it passes from a segment to the next (xi = 1 on one is
+   !> xi = 0 on the other).  ok = .false. when the current segment has turned by
+   !> a right angle or more from the reference (tref.(xb - xa) <= 0): no such
+   !> point.
+   pure subroutine ray_projection(xs, xa, xb, tref, xi, ok)
+      real(wp), intent(in) :: xs(2), xa(2), xb(2), tref(2)
+      real(wp), intent(out) :: xi
+      logical, intent(out) :: ok
+      real(wp) :: tt, lr
+      lr = length2(tref)
+      tt = dot_product(tref/lr, xb - xa)
+      ok = tt > 0.0_wp
+      xi = 0.0_wp
+      if (ok) xi = dot_product(tref/lr, xs - xa)/tt
+   end subroutine ray_projection
+
+   !> The derivative w = dxi/du of ray_projection, dof order of relative_map: from
+   !> tref.(x_s - x_a - xi (x_b - x_a)) = 0, w = A(xi)^T tref / tref.(x_b - x_a).
+   pure function ray_gradient(xi, xa, xb, tref) result(w)
+      real(wp), intent(in) :: xi, xa(2), xb(2), tref(2)
+      real(wp) :: w(6)
+      real(wp) :: tu(2)
+      tu = tref/length2(tref)
+      w = matmul(tu, relative_map(xi))/dot_product(tu, xb - xa)
+   end function ray_gradient
+
    !> What the motion of the projection adds to the tangent of one contact point
    !> whose force acts along a fixed normal n (the reference normal of small strain):
    !> the force is f = -N A(xi)^T n with N = lambda - k g and the gap
-   !> g = n.(x_s - x_xi) at the closest point xi of the current segment, so that
+   !> g = n.(x_s - x_xi) at a point xi of the current segment that follows the
+   !> sliding (ray_projection; or the closest point), so that
    !>
    !>     df = k A^T n n^T A du - (k c A^T n + N B) w^T du
    !>
    !> with c = n.t (t = x_b - x_a, current; dg/dxi = -c), B = (dA/dxi)^T n =
-   !> [0; n; -n] and w = dxi/du (projection_gradient).  This returns the second
+   !> [0; n; -n] and w = dxi/du (projection_gradient for the closest point,
+   !> ray_gradient for the point along the reference normal).  This returns the second
    !> term, J = -(k c A^T n + N B) w^T: not symmetric, of size (k |c| + N) / l, zero
    !> where nothing slides and the master keeps its direction; the first term is
    !> contact_stiffness.

@@ -8,12 +8,13 @@ program test_contact_geometry
    use vemcontact_contact_geometry, only: project_point_segment, relative_map, contact_force, &
                                           contact_stiffness, contact_energy, contact_pressure, &
                                           segment_normal, contact_slip, seg_ok, seg_degenerate, &
-                                          sliding_tangent, projection_gradient
+                                          sliding_tangent, projection_gradient, ray_projection, ray_gradient
    implicit none
    type(checker_t) :: t
    real(wp) :: xa(2), xb(2), tt(2), nn(2), xs(2), xi, g, n(2), d, l
    real(wp) :: a(2, 6), u(6), x6(6), kc(6, 6), kfd(6, 6), f(6), fp(6), fm(6), du(6), dx
-   real(wp) :: n0(2), js(6, 6), jt(6, 6)
+   real(wp) :: n0(2), js(6, 6), jt(6, 6), lam
+   logical :: ok
    real(wp) :: k, de, diff, ratio, gtarget, c(2), w, sc, xi1, g1, n1(2), d1
    integer :: st, j, m
    character(len=32) :: lab
@@ -227,6 +228,48 @@ program test_contact_geometry
       maxval(abs(js))/maxval(abs(jt))
    call t%check(diff <= 1.0e-7_wp, 'contact_stiffness + sliding_tangent = FD with xi recomputed')
    call t%check(maxval(abs(js))/maxval(abs(jt)) > 1.0e-3_wp, 'the sliding part is not negligible here')
+   ! ---- finite sliding along the reference normal (the pairing of NODE TO SURFACE):
+   ! xi the point of the current segment on the line through the slave along n0
+   ! (ray_projection), g = n0.(x_s - x_xi), f = -N A(xi)^T n0 with N = lam - k g.
+   ! Its Jacobian, with xi recomputed, is contact_stiffness + sliding_tangent with
+   ! w = ray_gradient: central differences on the turned, moved segment above, the
+   ! slave penetrating (lam = 0) and open but pressed by its multiplier (lam > k g >
+   ! 0), where the N B w^T term dominates.  Tolerance as above (same smoothness and
+   ! scales)
+   do m = 1, 2
+      lam = 0.0_wp
+      if (m == 2) then
+         xs = xa + 0.3_wp*(xb - xa) - 0.04_wp*[-sin(0.1_wp), cos(0.1_wp)]
+         lam = 2.0_wp*k*0.04_wp
+      end if
+      x6 = [xs, xa, xb]
+      call ray_projection(xs, xa, xb, [1.0_wp, 0.0_wp], xi, ok)
+      call t%check(ok, 'ray projection exists')
+      g = dot_product(n0, xs - ((1.0_wp - xi)*xa + xi*xb))
+      call t%close(abs(dot_product([1.0_wp, 0.0_wp], xs - ((1.0_wp - xi)*xa + xi*xb))), 0.0_wp, 0.0_wp, &
+                   'x_s - x_xi along the reference normal', atol=1.0e-15_wp)
+      write (lab, '(a,i0)') ' case ', m
+      call t%check(lam - k*g > 0.0_wp, 'the ray test point carries a force,'//trim(lab))
+      js = sliding_tangent(xi, n0, k, lam - k*g, dot_product(n0, xb - xa), ray_gradient(xi, xa, xb, [1.0_wp, 0.0_wp]))
+      jt = contact_stiffness(xi, n0, k, -1.0_wp) + js
+      do j = 1, 6
+         du = 0.0_wp
+         du(j) = dx
+         kfd(:, j) = (ray_force(x6 + du, lam) - ray_force(x6 - du, lam))/(2.0_wp*dx)
+      end do
+      diff = maxval(abs(kfd - jt))/maxval(abs(jt))
+      write (*, '(a,es10.3,a,es10.3)') 'ray tangent vs FD: ', diff, '  sliding part / tangent: ', &
+         maxval(abs(js))/maxval(abs(jt))
+      call t%check(diff <= 1.0e-7_wp, 'contact_stiffness + sliding_tangent(ray_gradient) = FD,'//trim(lab))
+      call t%check(maxval(abs(js))/maxval(abs(jt)) > 1.0e-3_wp, 'the ray sliding part is not negligible,'//trim(lab))
+      ! the closest point's w in its place is not the tangent of this force
+      js = sliding_tangent(xi, n0, k, lam - k*g, dot_product(n0, xb - xa), projection_gradient(xi, xs, xa, xb))
+      call t%check(maxval(abs(kfd - contact_stiffness(xi, n0, k, -1.0_wp) - js))/maxval(abs(jt)) > 1.0e-4_wp, &
+                   'the test tells the two projections apart,'//trim(lab))
+   end do
+   ! no ray through a segment turned by a right angle
+   call ray_projection([0.0_wp, 1.0_wp], [0.0_wp, 0.0_wp], [0.0_wp, 2.0_wp], [1.0_wp, 0.0_wp], xi, ok)
+   call t%check(.not. ok, 'no ray projection on a segment turned by 90 degrees')
    ! without c and d (a master that keeps its direction, the slave on it) only the
    ! shift of the force between a and b remains: N B w^T
    js = sliding_tangent(0.5_wp, n0, k, 2.0_wp, 0.0_wp, projection_gradient(0.5_wp, [1.0_wp, 0.0_wp], &
@@ -234,6 +277,17 @@ program test_contact_geometry
    call t%close(js(4, 1), -2.0_wp*0.5_wp, 1.0e-15_wp, 'N B w^T: force moves to b as the slave slides')
    call t%finish()
 contains
+   !> The contact force f_c = -N A(xi)^T n0 of the configuration x (slave, a, b), xi
+   !> the point along n0 (ray_projection, reference segment along x), N = lam - k g
+   function ray_force(x, lam) result(ff)
+      real(wp), intent(in) :: x(6), lam
+      real(wp) :: ff(6), xi1, g1
+      logical :: ok1
+      call ray_projection(x(1:2), x(3:4), x(5:6), [1.0_wp, 0.0_wp], xi1, ok1)
+      g1 = dot_product(n0, x(1:2) - ((1.0_wp - xi1)*x(3:4) + xi1*x(5:6)))
+      ff = -(lam - k*g1)*matmul(n0, relative_map(xi1))
+   end function ray_force
+
    !> The contact force f_c = -N A(xi)^T n0 (K u + f_c = f_ext) of the configuration
    !> x (slave, a, b), xi re-projected, N = -k g
    function sliding_force(x) result(ff)
