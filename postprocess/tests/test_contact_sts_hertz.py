@@ -143,6 +143,44 @@ def test_voronoi_disc_master_sts(exe, meshes):
     assert abs(fine / P0 - 1) < abs(coarse / P0 - 1), (coarse, fine)
 
 
+def test_voronoi_disc_master_nts(exe, meshes):
+    """The disc as master with NODE TO SURFACE, finite sliding (the default) and HARD.
+    The pairing follows the master along its reference normal (ray_projection,
+    docs/contact-formulation.md), so that the gap is continuous from one segment of
+    the polygon to the next: one increment, no cut-back, 12 iterations at narc = 240
+    and 480 (with the closest point: a cut-back, then 13 / 12 / 19 / 37 iterations at
+    480).  Read from the HDF5 iteration records: the step's records restart their
+    count after a cut-back.  The target of issue 22, 10, is not reached: 4 iterations
+    find the active set, 8 converge the multipliers with the pairing (SMALL SLIDING: 1).
+
+    The peak is node to segment's, not the iteration's: the block's 8 slave nodes in
+    the contact zone face 2-3 times as many nodes of the soft disc, whose surface
+    bulges between them, and CPRESS oscillates from node to node (+23.2 % at narc =
+    480, +28.7 % at 240, the same before the ray pairing; SMALL SLIDING +50 / +43 %).
+    Asserted: the transmitted force (the vertical part of sum CPRESS * CNAREA is the
+    load), the peak below +25 % and lower with the finer polygon."""
+    peaks = {}
+    for narc in (480, 240):
+        d = meshes[narc]
+        peak(exe, d, "DMASTER", "NODE TO SURFACE")
+        h5 = d / "out" / "DMASTER_NODE.h5"
+        with h5py.File(h5, "r") as f:
+            its = np.array(f["steps/0001/contact/iterations/iteration"])
+            cp = np.array(f["steps/0001/contact/pair_1/CPRESS"])
+            area = np.array(f["steps/0001/contact/pair_1/CNAREA"])
+            x = np.array(f["steps/0001/contact/pair_1/coordinates"])[:, 0]
+        assert np.array_equal(its, np.arange(1, its.size + 1)), its    # one increment, no cut-back
+        assert its.size <= 12, its.size
+        # CPRESS acts along the disc's normal, tilted by about x/R: its vertical part
+        # carries the load, within the polygon's normals against the circle's at the
+        # node (half a side's turn, pi/narc/2, times the tilt, at most 0.15: 1e-3)
+        fy = np.sum(cp * area * np.sqrt(1 - (x / 10.0) ** 2))
+        assert abs(fy / 100.0 - 1) <= 1e-3, fy
+        peaks[narc] = cp.max() / P0 - 1
+    assert peaks[480] <= 0.25, peaks
+    assert peaks[480] < peaks[240], peaks
+
+
 def hertz_1155(exe, d, include, pair_type):
     """inputs/hertz_1155_vem.inp (the paper's Hertz, 1155 first-order VEM elements) with
     HARD and `pair_type` on the mesh `include`: (x, CPRESS, CNAREA, closed) of its slave

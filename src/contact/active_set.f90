@@ -6,9 +6,11 @@
 !> field, the springs that hold bodies, and the table written as results.
 !>
 !> Kinematics (small strain, docs/contact-formulation.md): the pairing (segment,
-!> xi) is found in the current configuration x + u, so that it follows the sliding;
-!> the normal n is the master segment's normal in the reference configuration, as
-!> small strain has no finite rotations.  With the pairing frozen the gap is linear
+!> xi) is found in the current configuration x + u, so that it follows the sliding:
+!> with finite sliding, the point of the master on the line through the slave node
+!> along the segment's reference normal (ray_pair), so that the gap is continuous
+!> from one segment to the next; the normal n is the master segment's normal in the
+!> reference configuration, as small strain has no finite rotations.  With the pairing frozen the gap is linear
 !> in u, g = g0 + n.A(xi) u with g0 = n.(X_s - X_xi) from the reference
 !> coordinates, so an iteration with a fixed active set and pairing is one linear
 !> solve, and the iteration on the pairing is a fixed point that only the sliding

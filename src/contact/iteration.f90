@@ -196,6 +196,9 @@ module vemcontact_contact_iteration
       real(wp) :: t_iter = 0.0_wp, t_fact = 0.0_wp, t_srch = 0.0_wp
       logical :: warned = .false.         !< the ill-conditioning warning was given
       logical :: settled = .false.        !< the last update changed no entry
+      !> the active set has held once in this load state (finite sliding: Newton steps
+      !> on the pairing from then on)
+      logical :: newton = .false.
       logical :: rebuilt = .false.        !< the last matrix needed a new pattern
       logical, allocatable :: history(:, :), held(:)
       !> entries kept closed after a cycle between open and closed (pin_cycle)
@@ -355,7 +358,11 @@ contains
       ! Newton on the pairing once the active set holds: the tangent carries the
       ! part of finite sliding (sliding_tangent), which the factor lacks: GMRES with
       ! the factor as preconditioner solves with it
-      s%op%sliding = (s%settled .or. contact%has_sliding_friction()) .and. contact%has_sliding()
+      ! (with friction on a finite-sliding pair from the first iteration: the slide
+      ! that a frozen pairing leaves out moves the gaps by c dxi, which the slipping
+      ! force mu N follows)
+      s%newton = s%newton .or. s%settled
+      s%op%sliding = (s%newton .or. contact%has_sliding_friction()) .and. contact%has_sliding()
       ! the matrix of the current factor: solve again without factorizing; a
       ! matrix that differs from it only by a small move of the pairing: the old
       ! factor as the preconditioner
@@ -406,8 +413,10 @@ contains
       ! a frozen-pairing solve minimizes its penalty energy with the current
       ! springs: cut it when it overshoots into new contact
       s%step = 1.0_wp
-      if (.not. s%op%sliding .or. .not. s%settled) s%step = energy_step(s, sys, fixed, fext, u, contact)
-      ! a frictional node slides at most slide_limit segments per solve
+      ! (and a Newton step with sliding friction while the active set still changes)
+      if (.not. s%op%sliding .or. (contact%has_sliding_friction() .and. .not. s%settled)) &
+         s%step = energy_step(s, sys, fixed, fext, u, contact)
+      ! a frictional node of finite sliding stops within slide_limit past its segment's end
       s%step = min(s%step, contact%slide_step(u - s%u0))
       if (s%step < 1.0_wp) u = s%u0 + s%step*(u - s%u0)
    end subroutine solve_frozen
