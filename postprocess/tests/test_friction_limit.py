@@ -1,8 +1,8 @@
 """Limit equilibrium with friction through the vemcontact executable: a block pushed
 up an inclined joint (the NAFEMS CGS-4 form, F2 of the friction anchors) and the same
 block on a Mohr-Coulomb joint with cohesion, NODE TO SURFACE (CPE4 and VPE sides) and
-SURFACE TO SURFACE (VPE sides), exact stick and a stick slope.  (NODE TO SURFACE with
-finite sliding: test_friction_finite.py.)
+SURFACE TO SURFACE (VPE sides), exact stick and a stick slope.  (Friction with the finite
+sliding of NODE TO SURFACE is refused: test_friction_finite.py.)
 
 A base [0, 4] wide, from y = -1 up to the joint y = x tan(a), tan(a) = 0.1, held at
 its bottom; on it a block over 1 <= x <= 3, one unit high above the joint (vertical
