@@ -7,6 +7,8 @@ the slave node that carries it (its x, its distance to the nearest master vertex
 the pressure profile as CSV.
 
 usage: bench/hertz_voronoi_master.py EXE OUTDIR [narc[xM] ...]    (default: 240 480 960)
+Measured (docs/contact-formulation.md, "NODE TO SURFACE on a curved master"):
+240 480 480x2 480x4.
 
 narcxM: the block (the slave) with M times the test's 24 x 20 divisions, so that its
 nodes on the contact face outnumber the disc's (M = 2, 4).
