@@ -2,7 +2,7 @@
 up an inclined joint (the NAFEMS CGS-4 form, F2 of the friction anchors) and the same
 block on a Mohr-Coulomb joint with cohesion, NODE TO SURFACE (CPE4 and VPE sides) and
 SURFACE TO SURFACE (VPE sides), exact stick and a stick slope.  (Friction with the finite
-sliding of NODE TO SURFACE is refused with a message: the last test.)
+sliding of NODE TO SURFACE is refused: test_friction_finite.py.)
 
 A base [0, 4] wide, from y = -1 up to the joint y = x tan(a), tan(a) = 0.1, held at
 its bottom; on it a block over 1 <= x <= 3, one unit high above the joint (vertical
@@ -114,19 +114,7 @@ def test_push_up_incline(exe, tmp_path, case, cohesion):
     assert max(iterations) <= 10, iterations
 
 
-def test_finite_sliding_refused(exe, tmp_path):
-    """*FRICTION on a NODE TO SURFACE pair without SMALL SLIDING: one message naming
-    the pair's file:line and the remedy, exit 1, no results."""
-    path, _ = deck(tmp_path, "finite", "CPE4", "NODE TO SURFACE", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD",
-                   f"*FRICTION\n{float(MU)!r}")
-    r = subprocess.run([exe, "-q", "-o", str(tmp_path / "o"), str(path)], capture_output=True, text=True)
-    assert r.returncode == 1
-    assert "friction (*FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING" in r.stderr
-    assert "finite.inp:" in r.stderr and r.stderr.count("error:") == 1
-    assert not list((tmp_path / "o").glob("*.h5")) if (tmp_path / "o").exists() else True
-
-
-def pad_deck(tmp_path, friction):
+def pad_deck(tmp_path, friction, pair="SURFACE TO SURFACE", base_right=40.0, nbase_x=7):
     """The pad of Code_Aster's SSNV503 (F1 of the friction anchors) in 2D: a pad 40 x 20
     (E = 2.1e5, nu = 0) on a base (its top y = 0, from x = -10 to 40, held at its
     bottom), SURFACE TO SURFACE, mu = 0.3; the restraining springs are an elastic bar
@@ -134,9 +122,11 @@ def pad_deck(tmp_path, friction):
     (the corner is a joint node: the bar there would set HARD's internal stiffness),
     its far end held along x: sum k = E h / L = 4.  Step 1: the top pressure 300 (N = 12 000); step 2: the
     lateral pressure 178.2 on the left side (T = 3564 = 0.99 mu N); step 3: 181.8
-    (T = 3636 = 1.01 mu N)."""
+    (T = 3636 = 1.01 mu N).  `pair` is the contact pair's TYPE; the base reaches to x =
+    `base_right` in `nbase_x` elements (NODE TO SURFACE with finite sliding needs a base
+    beyond the pad's slide)."""
     pid, pxy, pq = grid(0.0, 40.0, 8, 4, lambda x: 0.0, lambda x: 20.0, 1)
-    bid, bxy, bq = grid(-10.0, 40.0, 7, 2, lambda x: -10.0, lambda x: 0.0, pid.size + 1)
+    bid, bxy, bq = grid(-10.0, base_right, nbase_x, 2, lambda x: -10.0, lambda x: 0.0, pid.size + 1)
     rid, rxy, rq = grid(40.0, 60.0, 4, 3, lambda x: 5.0, lambda x: 20.0, pid.size + bid.size + 1)
     # the bar's left column is the pad's right side above its corner (rows 1-4)
     rq = [tuple(int(pid[int(np.argwhere(rid == n)[0][0]) + 1, -1]) if n in rid[:, 0] else int(n) for n in q)
@@ -154,10 +144,10 @@ def pad_deck(tmp_path, friction):
     lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", "2.1e5, 0.0", "*MATERIAL, NAME=SPRING", "*ELASTIC", f"{float(16.0 / 3.0)!r}, 0.0",
               "*SOLID SECTION, ELSET=PAD, MATERIAL=STEEL", "1.0", "*SOLID SECTION, ELSET=BASE, MATERIAL=STEEL", "1.0",
               "*SOLID SECTION, ELSET=BAR, MATERIAL=SPRING", "1.0",
-              "*SURFACE, NAME=MASTER"] + [f"{npad + nbase - 7 + i + 1}, S3" for i in range(7)]
+              "*SURFACE, NAME=MASTER"] + [f"{npad + nbase - nbase_x + i + 1}, S3" for i in range(nbase_x)]
     lines += ["*SURFACE, NAME=SLAVE"] + [f"{i + 1}, S1" for i in range(8)]
     lines += ["*SURFACE INTERACTION, NAME=I", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD", friction,
-              "*CONTACT PAIR, INTERACTION=I, TYPE=SURFACE TO SURFACE", "SLAVE, MASTER",
+              f"*CONTACT PAIR, INTERACTION=I, TYPE={pair}", "SLAVE, MASTER",
               "*BOUNDARY"] + [f"{i}, 1, 2" for i in bid[0]] + [f"{i}, 1" for i in rid[:, -1]]
     top = np.full(9, 300.0 * 5.0)
     top[[0, -1]] *= 0.5

@@ -36,6 +36,7 @@ module vemcontact_contact_active_set
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_contact_tangential, only: friction_state_t, make_law, friction_params_t
    use vemcontact_contact_friction, only: tangent_stick, tangent_slip, tangential_response_t
+   use vemcontact_contact_master_arc, only: master_arcs
    implicit none
    private
 
@@ -51,6 +52,13 @@ module vemcontact_contact_active_set
    !> (ray_pair) is followed from the closest one; it is next to it on a polyline
    !> whose reference normals turn by less than a right angle per segment.
    integer, parameter :: ray_walk_limit = 4
+   !> How far past the end of its segment, in segments, a frictional finite-sliding
+   !> entry's master point may move in one solve (slide_step): the solve sees the
+   !> master's surface as the line of that segment, and beyond its vertex the gap
+   !> leaves that line by the kink times the overshoot, which the augmentation
+   !> stiffness of HARD turns into forces far beyond the pressures (the pad's onset,
+   !> docs/contact-formulation.md, "Friction with finite sliding").
+   real(wp), parameter, public :: slide_limit = 1.0e-2_wp
 
    !> A reference gap g0 within this many units of round-off of the coordinates
    !> involved (eps times their largest magnitude) is taken as exactly zero.  Surfaces
@@ -108,6 +116,10 @@ module vemcontact_contact_active_set
       real(wp) :: search_ratio = 1.0_wp
       integer(ip), allocatable :: nn_seg(:)
       real(wp), allocatable :: nn_xi(:), nn_normal(:, :)
+      !> finite sliding: the reference arc length along the master where each
+      !> segment starts, and the length of its closed loop (0 on an open chain)
+      !> (master_arcs): the slip of a slave node is measured along it
+      real(wp), allocatable :: arc(:), period(:)
    end type pair_data_t
 
    type :: contact_state_t
@@ -139,6 +151,11 @@ module vemcontact_contact_active_set
       !> the part of the tangent that the motion of the projection adds (w = 0 where
       !> the pairing is fixed)
       real(wp), allocatable :: slide_c(:), slide_w(:, :)
+      !> finite sliding, the slip s = s0 + t.A(xi) u along the master (entry_slip):
+      !> s0 = S_a + t.(X_s - X_a), S_a the reference arc length at the segment's start
+      !> (0 where the pairing is fixed), and c_t = t.(u_b - u_a), the slip's change
+      !> with xi (-c_t) in the sliding tangent
+      real(wp), allocatable :: slide_s0(:), slide_ct(:)
       logical, allocatable :: active(:)
       !> the entry had a master segment at the start of the step and has none at its
       !> end: it slid past the end of an open master surface (set by the driver)
@@ -179,6 +196,8 @@ module vemcontact_contact_active_set
       procedure :: linear_forces
       procedure :: tangent_times
       procedure :: has_sliding
+      procedure :: has_sliding_friction
+      procedure :: slide_step
       procedure :: springs
       procedure :: table
       procedure :: max_penetration
@@ -252,6 +271,7 @@ contains
                                   (median_length(model, seg)*maxval(thick, mask=thick > 0.0_wp))
          end if
          self%pairs(p)%small_sliding = model%pairs(p)%small_sliding
+         call master_arcs(model%x, seg, self%pairs(p)%arc, self%pairs(p)%period)
          if (model%pairs(p)%formulation == pair_surface_to_surface) then
             call node_partners(model, model%pairs(p), node, seg, seg_elem, self%pairs(p), err)
             if (allocated(err)) then
@@ -289,10 +309,12 @@ contains
    !> The tangential law of every pair and the tangential spring of every entry: the
    !> stick slope times the tributary area, or for exact stick the augmentation
    !> stiffness of HARD (hard_stiffness E/h, scaled by STIFFNESS SCALE FACTOR).
-   !> Friction with the finite sliding of NODE TO SURFACE (the pairing found anew at
-   !> every iteration) is refused: the stick/slip states and the re-pairing did not
-   !> settle together (a block pushed up an inclined joint cycled with LINEAR contact
-   !> and took 12 iterations with HARD), so the pair must keep its pairing.
+   !> Friction with the finite sliding of NODE TO SURFACE is refused: its slip
+   !> kinematics are in place (the arc length along the master, sliding_terms, and the
+   !> tangential force's sliding tangent, tangential_sliding), but the iteration does
+   !> not converge robustly with them yet (docs/contact-formulation.md, "Friction",
+   !> the numbers: more than 10 iterations with HARD, and a slide of 1.8 master segments
+   !> in one increment opened the whole contact).
    subroutine init_friction(self, model, error)
       type(contact_state_t), intent(inout) :: self
       type(model_t), intent(in) :: model
@@ -564,6 +586,7 @@ contains
       allocate (self%normal(2, n), source=0.0_wp)
       allocate (self%slide_c(n), source=0.0_wp)
       allocate (self%slide_w(6, n), source=0.0_wp)
+      allocate (self%slide_s0(n), self%slide_ct(n), source=0.0_wp)
       allocate (self%active(n), source=.false.)
       allocate (self%lambda(n), source=0.0_wp)
       allocate (self%k_full(n), source=0.0_wp)
@@ -673,7 +696,10 @@ contains
                call reference_gap(i, a, b)
                self%slide_c(i) = 0.0_wp
                self%slide_w(:, i) = 0.0_wp
+               self%slide_s0(i) = 0.0_wp
+               self%slide_ct(i) = 0.0_wp
                if (.not. pd%small_sliding) call sliding_terms(i, a, b)
+               if (.not. pd%small_sliding) call carry_anchor(i, prev(i - lo + 1))
             end do
             pd%paired = .true.
          end associate
@@ -711,17 +737,43 @@ contains
 
       !> c = n.(u_b - u_a) and w = dxi/du of entry i on the segment a -> b at u, for
       !> the sliding part of the tangent (sliding_tangent, tangent_times); the
-      !> reference segment is normal to n, so that c = n.t of the current one.
+      !> reference segment is normal to n, so that c = n.t of the current one.  And
+      !> the slip's terms: s0 = S_a + t.(X_s - X_a) with S_a the reference arc length
+      !> at a, so that s = s0 + t.A(xi) u = S(xi) + t.(x_s - x_xi) is the arc length of
+      !> the projection (the current x_s - x_xi is normal to the current segment: its
+      !> t component is the gap times the segment's rotation), continuous across
+      !> segment changes; c_t = t.(u_b - u_a), ds/dxi = -c_t at fixed u.
       subroutine sliding_terms(i, a, b)
          integer, intent(in) :: i
          integer(ip), intent(in) :: a, b
+         real(wp) :: t(2)
          self%slide_c(i) = dot_product(self%normal(:, i), u(2*b - 1:2*b) - u(2*a - 1:2*a))
          if (segment_is_degenerate(model%x(:, a), model%x(:, b))) then
             self%slide_w(:, i) = projection_gradient(self%xi(i), current(self%node(i)), current(a), current(b))
          else
             self%slide_w(:, i) = ray_gradient(self%xi(i), current(a), current(b), model%x(:, b) - model%x(:, a))
          end if
+         t = tangent_of(self%normal(:, i))
+         self%slide_s0(i) = self%pairs(self%pair(i))%arc(self%iseg(i)) + &
+                            dot_product(t, model%x(:, self%node(i)) - model%x(:, a))
+         self%slide_ct(i) = dot_product(t, u(2*b - 1:2*b) - u(2*a - 1:2*a))
       end subroutine sliding_terms
+
+      !> The stick anchor of a frictional entry under finite sliding, a position on
+      !> the master's arc length: an entry paired anew (none before) anchors where it
+      !> is; on a closed loop the anchor follows the slip round the wrap of the arc
+      !> length (the nearest of its copies a loop length apart).
+      subroutine carry_anchor(i, iprev)
+         integer, intent(in) :: i
+         integer(ip), intent(in) :: iprev
+         real(wp) :: sl, period
+         if (.not. self%fric%on) return
+         if (.not. self%fric%frictional_pair(self%pair(i))) return
+         sl = entry_slip(self, i, u)
+         if (iprev == 0) self%fric%anchor(i) = sl
+         period = self%pairs(self%pair(i))%period(self%iseg(i))
+         if (period > 0.0_wp) self%fric%anchor(i) = self%fric%anchor(i) + period*anint((sl - self%fric%anchor(i))/period)
+      end subroutine carry_anchor
 
       !> Finite sliding: entry i moves to the point of the master surface on the line
       !> through its slave node along the reference normal (ray_projection), walking
@@ -897,16 +949,28 @@ contains
       has_coupling = any(self%active .and. self%fric%state == tangent_slip .and. abs(self%fric%dnormal) > 0.0_wp)
    end function has_coupling
 
-   !> Relative tangential displacement s = t.A(xi) u of entry i (contact_slip).
+   !> The slip of entry i at u: s = s0 + t.A(xi) u, the relative tangential
+   !> displacement (contact_slip) plus s0, which for finite sliding makes it the arc
+   !> length of the projection along the master (sliding_terms; s0 = 0 where the
+   !> pairing is fixed).
    pure real(wp) function entry_slip(self, i, u) result(sl)
       type(contact_state_t), intent(in) :: self
       integer, intent(in) :: i
       real(wp), intent(in) :: u(:)
+      sl = self%slide_s0(i) + relative_slip(self, i, u)
+   end function entry_slip
+
+   !> Relative tangential displacement t.A(xi) v of entry i (contact_slip): the
+   !> slip's change along v with the pairing frozen.
+   pure real(wp) function relative_slip(self, i, v) result(sl)
+      type(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      real(wp), intent(in) :: v(:)
       integer(ip) :: nodes(3)
       nodes = nodes_of(self, i)
-      sl = contact_slip(self%xi(i), self%normal(:, i), [u(2*nodes(1) - 1:2*nodes(1)), &
-                                                         u(2*nodes(2) - 1:2*nodes(2)), u(2*nodes(3) - 1:2*nodes(3))])
-   end function entry_slip
+      sl = contact_slip(self%xi(i), self%normal(:, i), [v(2*nodes(1) - 1:2*nodes(1)), &
+                                                         v(2*nodes(2) - 1:2*nodes(2)), v(2*nodes(3) - 1:2*nodes(3))])
+   end function relative_slip
 
    !> The return mapping of every entry's tangential law at u (after update_active):
    !> stick/slip states and forces for the next solve; nchanged counts the
@@ -990,7 +1054,7 @@ contains
       do i = 1, self%n
          if (.not. self%active(i)) cycle
          if (self%fric%state(i) /= tangent_stick .and. self%fric%state(i) /= tangent_slip) cycle
-         ds = entry_slip(self, i, d)
+         ds = relative_slip(self, i, d)
          a = a + frozen_tangential(self, i, u0)*ds
          if (self%fric%state(i) == tangent_stick) b = b + self%fric%kt(i)*ds*ds
       end do
@@ -1013,12 +1077,13 @@ contains
          if (.not. self%active(i)) cycle
          call scatter(f, nodes_of(self, i), (self%lambda(i) - self%k(i)*self%gap0(i))* &
                       matmul(self%normal(:, i), relative_map(self%xi(i))))
-         ! the tangential force's part that does not depend on u: lambda - kt anchor of
-         ! a sticking entry, the frozen force of a slipping one (opposite sign: it
+         ! the tangential force's part that does not depend on u: lambda - kt (anchor -
+         ! s0) of a sticking entry, the frozen force of a slipping one (opposite sign: it
          ! enters as K u + f_c = f_ext with f_c = T A^T t)
          select case (self%fric%state(i))
          case (tangent_stick)
-            call scatter(f, nodes_of(self, i), -(self%fric%lambda(i) - self%fric%kt(i)*self%fric%anchor(i))* &
+            call scatter(f, nodes_of(self, i), -(self%fric%lambda(i) - self%fric%kt(i)*(self%fric%anchor(i) - &
+                                                                                   self%slide_s0(i)))* &
                          matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i))))
          case (tangent_slip)
             call scatter(f, nodes_of(self, i), -(self%fric%force(i) + self%fric%dnormal(i)* &
@@ -1098,7 +1163,8 @@ contains
          an = matmul(self%normal(:, i), relative_map(self%xi(i)))
          kc = 0.0_wp
          if (sliding) kc = sliding_tangent(self%xi(i), self%normal(:, i), self%k(i), self%normal_force(i), &
-                                           self%slide_c(i), self%slide_w(:, i))
+                                           sliding_c(self, i), &
+                                           self%slide_w(:, i)) + tangential_sliding(self, i)
          call scatter(jv, nodes, self%k(i)*an*dot_product(an, ve) + matmul(kc, ve))
          if (self%fric%state(i) == tangent_stick) then
             at = matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i)))
@@ -1111,12 +1177,86 @@ contains
       end do
    end subroutine tangent_times
 
+   !> The part of the tangent that the motion of the projection adds to the
+   !> tangential force T A(xi)^T t of entry i (finite sliding): xi moves by w.v, which
+   !> turns A(xi)^T t by T (0, t, -t) w.v and changes the force itself, a sticking
+   !> entry's slip s = s0 + t.A(xi) u by -c_t w.v (kt times it), a slipping entry's
+   !> normal force by k c w.v (dT/dN times it); the same rank-one form as the normal
+   !> force's (sliding_tangent, with t for n).  The segment's t is its reference
+   !> tangent, fixed while the pairing stays on it.
+   pure function tangential_sliding(self, i) result(kc)
+      type(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      real(wp) :: kc(6, 6)
+      kc = 0.0_wp
+      select case (self%fric%state(i))
+      case (tangent_stick)
+         kc = sliding_tangent(self%xi(i), tangent_of(self%normal(:, i)), self%fric%kt(i), -self%fric%force(i), &
+                              self%slide_ct(i), self%slide_w(:, i))
+      case (tangent_slip)
+         kc = sliding_tangent(self%xi(i), tangent_of(self%normal(:, i)), -self%fric%dnormal(i)*self%k(i), &
+                              -self%fric%force(i), sliding_c(self, i), self%slide_w(:, i))
+      end select
+   end function tangential_sliding
+
+   !> c = n.(u_b - u_a) of entry i in the sliding tangent: the gap's change -c dxi as
+   !> the projection moves along the current segment, measured along the reference
+   !> normal.  Frictional HARD entries keep it too: through a slipping force mu N
+   !> its k c (k the augmentation stiffness) couples the slide to the normal force,
+   !> and a tangent without it made the multiplier updates converge linearly (by a
+   !> tenth per iteration on the inclined block: 12 iterations instead of 9).
+   pure real(wp) function sliding_c(self, i) result(c)
+      type(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      c = self%slide_c(i)
+   end function sliding_c
+
    !> Whether the pairing of some active entry follows the sliding (finite sliding
    !> node to surface): then the tangent has the part of sliding_tangent.
    pure logical function has_sliding(self)
       class(contact_state_t), intent(in) :: self
       has_sliding = any(self%active .and. any(abs(self%slide_w) > 0.0_wp, dim=1))
    end function has_sliding
+
+   !> Whether some active entry of a finite-sliding pair carries a tangential force
+   !> (sticking or slipping).
+   pure logical function has_sliding_friction(self)
+      class(contact_state_t), intent(in) :: self
+      has_sliding_friction = .false.
+      if (.not. self%fric%on) return
+      has_sliding_friction = any(self%active .and. any(abs(self%slide_w) > 0.0_wp, dim=1) .and. &
+                                 (self%fric%state == tangent_stick .or. self%fric%state == tangent_slip))
+   end function has_sliding_friction
+
+   !> The step length t <= 1 along du that moves no active frictional entry of a
+   !> finite-sliding pair more than slide_limit segments past the end of its segment
+   !> (xi + t w.du within [-slide_limit, 1 + slide_limit], w = dxi/du at the current
+   !> pairing); 1 when none would.
+   pure real(wp) function slide_step(self, du) result(t)
+      class(contact_state_t), intent(in) :: self
+      real(wp), intent(in) :: du(:)
+      integer(ip) :: nodes(3)
+      real(wp) :: ve(6), dxi, lim
+      integer :: i, j
+      t = 1.0_wp
+      if (.not. self%fric%on) return
+      do i = 1, self%n
+         if (.not. self%active(i)) cycle
+         if (.not. (self%fric%state(i) == tangent_stick .or. self%fric%state(i) == tangent_slip)) cycle
+         if (.not. any(abs(self%slide_w(:, i)) > 0.0_wp)) cycle
+         nodes = nodes_of(self, i)
+         do j = 1, 3
+            ve(2*j - 1:2*j) = du(2*nodes(j) - 1:2*nodes(j))
+         end do
+         dxi = dot_product(self%slide_w(:, i), ve)
+         if (dxi > 0.0_wp) then
+            lim = max(0.0_wp, 1.0_wp - self%xi(i)) + slide_limit
+         else
+            lim = max(0.0_wp, self%xi(i)) + slide_limit
+         end if
+         if (abs(dxi)*t > lim) t = lim/abs(dxi)
+      end do
+   end function slide_step
 
    !> Normal force N = max(0, lambda - k g) of entry i (0 when inactive).
    pure real(wp) function normal_force(self, i) result(f)
@@ -1265,6 +1405,11 @@ contains
       do i = 1, self%n
          if (.not. mask(i)) cycle
          call scatter(f, nodes_of(self, i), dlam(i)*matmul(self%normal(:, i), relative_map(self%xi(i))))
+         ! a slipping entry's force follows its normal force (dT/dN dlam along t);
+         ! with finite sliding the slide it drives moves the gaps (-c dxi)
+         if (self%fric%state(i) == tangent_slip .and. any(abs(self%slide_w(:, i)) > 0.0_wp)) &
+            call scatter(f, nodes_of(self, i), -self%fric%dnormal(i)*dlam(i)* &
+                         matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i))))
       end do
    end subroutine multiplier_load
 
@@ -1290,7 +1435,7 @@ contains
          do j = 1, 3
             ve(2*j - 1:2*j) = du(2*nodes(j) - 1:2*nodes(j))
          end do
-         dg(i) = dg(i) - self%slide_c(i)*dot_product(self%slide_w(:, i), ve)
+         dg(i) = dg(i) - sliding_c(self, i)*dot_product(self%slide_w(:, i), ve)
       end do
    end subroutine gap_change
 

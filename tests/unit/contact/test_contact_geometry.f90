@@ -14,6 +14,10 @@ program test_contact_geometry
    real(wp) :: xa(2), xb(2), tt(2), nn(2), xs(2), xi, g, n(2), d, l
    real(wp) :: a(2, 6), u(6), x6(6), kc(6, 6), kfd(6, 6), f(6), fp(6), fm(6), du(6), dx
    real(wp) :: n0(2), js(6, 6), jt(6, 6), lam
+   !> the reference configuration of the tangential checks: segment xa0 -> xb0 along
+   !> tref0 (length 2), normal nref0 = (t_y, -t_x), the slave at xs0
+   real(wp), parameter :: tref0(2) = [1.0_wp, 0.0_wp], nref0(2) = [0.0_wp, -1.0_wp]
+   real(wp), parameter :: xa0(2) = [0.0_wp, 0.0_wp], xb0(2) = [2.0_wp, 0.0_wp], xs0(2) = [0.8_wp, -0.05_wp]
    logical :: ok
    real(wp) :: k, de, diff, ratio, gtarget, c(2), w, sc, xi1, g1, n1(2), d1
    integer :: st, j, m
@@ -275,8 +279,84 @@ program test_contact_geometry
    js = sliding_tangent(0.5_wp, n0, k, 2.0_wp, 0.0_wp, projection_gradient(0.5_wp, [1.0_wp, 0.0_wp], &
                         [0.0_wp, 0.0_wp], [2.0_wp, 0.0_wp]))
    call t%close(js(4, 1), -2.0_wp*0.5_wp, 1.0e-15_wp, 'N B w^T: force moves to b as the slave slides')
+   ! ---- the tangential force of finite sliding along the reference normal (friction on
+   ! NODE TO SURFACE, contact_state_t%tangential_sliding): f = T A(xi)^T t0, xi the ray
+   ! point, t0 the reference tangent a -> b, n0 = (t0_y, -t0_x).  Sticking, T = kt (s -
+   ! s_p) with the slip s = s0 + t0.A(xi) u, s0 = t0.(X_s - X_a), which the ray makes
+   ! the reference arc length xi l0; slipping, T = mu (lam - k g).  Its Jacobian, xi
+   ! recomputed, is the frozen part (kt a a^T, a = A^T t0; or -mu k a (A^T n0)^T) plus
+   ! sliding_tangent with t0 for n: (t0, kt, -T, c_t = t0.(u_b - u_a)) sticking,
+   ! (t0, -mu k, -T, c = n0.(u_b - u_a)) slipping, w = ray_gradient.  Central
+   ! differences on the turned, moved segment of the ray case; tolerance as above
+   do m = 1, 2
+      x6 = [xa + 0.4_wp*(xb - xa) + 0.03_wp*[-sin(0.1_wp), cos(0.1_wp)], xa, xb]
+      call ray_projection(x6(1:2), x6(3:4), x6(5:6), tref0, xi, ok)
+      call t%check(ok, 'tangential: ray projection exists')
+      call t%close(tangential_slip(x6), 2.0_wp*xi, 1.0e-14_wp, 'the slip is the reference arc length xi l0')
+      g = dot_product(nref0, x6(1:2) - ((1.0_wp - xi)*x6(3:4) + xi*x6(5:6)))
+      f = matmul(tref0, relative_map(xi))
+      if (m == 1) then
+         lam = k*(tangential_slip(x6) - 0.3_wp)       ! the sticking force T
+         jt = 0.0_wp
+         do j = 1, 6
+            jt(:, j) = k*f*f(j)
+         end do
+         js = sliding_tangent(xi, tref0, k, -lam, dot_product(tref0, (x6(5:6) - xb0) - (x6(3:4) - xa0)), &
+                              ray_gradient(xi, x6(3:4), x6(5:6), tref0))
+         lab = ' stick'
+      else
+         lam = 0.3_wp*(0.5_wp*k - k*g)                ! the slipping force mu N, N = lam_n - k g
+         fp = matmul(nref0, relative_map(xi))
+         do j = 1, 6
+            jt(:, j) = -0.3_wp*k*f*fp(j)
+         end do
+         js = sliding_tangent(xi, tref0, -0.3_wp*k, -lam, dot_product(nref0, (x6(5:6) - xb0) - (x6(3:4) - xa0)), &
+                              ray_gradient(xi, x6(3:4), x6(5:6), tref0))
+         lab = ' slip'
+      end if
+      jt = jt + js
+      do j = 1, 6
+         du = 0.0_wp
+         du(j) = dx
+         kfd(:, j) = (tangential_force(x6 + du, m) - tangential_force(x6 - du, m))/(2.0_wp*dx)
+      end do
+      diff = maxval(abs(kfd - jt))/maxval(abs(jt))
+      write (*, '(a,a,es10.3,a,es10.3)') 'tangential ray tangent vs FD,', trim(lab), diff, &
+         '  sliding part / tangent: ', maxval(abs(js))/maxval(abs(jt))
+      call t%check(diff <= 1.0e-7_wp, 'tangential force: frozen part + sliding_tangent(t0) = FD,'//trim(lab))
+      call t%check(maxval(abs(js))/maxval(abs(jt)) > 1.0e-3_wp, 'the tangential sliding part is not negligible,'// &
+                   trim(lab))
+   end do
    call t%finish()
 contains
+   !> The slip s = s0 + t0.A(xi) u of the configuration x (slave, a, b) against the
+   !> reference one (X_s, xa0, xb0 along tref0, S_a = 0), xi the ray point
+   function tangential_slip(x) result(sl)
+      real(wp), intent(in) :: x(6)
+      real(wp) :: sl, xi1, u1(6)
+      logical :: ok1
+      call ray_projection(x(1:2), x(3:4), x(5:6), tref0, xi1, ok1)
+      u1 = x - [xs0, xa0, xb0]
+      sl = dot_product(tref0, xs0 - xa0) + dot_product(tref0, matmul(relative_map(xi1), u1))
+   end function tangential_slip
+
+   !> The tangential force T A(xi)^T t0 of the configuration x: sticking (m = 1) T =
+   !> k (s - 0.3), slipping (m = 2) T = 0.3 (k/2 - k g), g = n0.(x_s - x_xi)
+   function tangential_force(x, m) result(ff)
+      real(wp), intent(in) :: x(6)
+      integer, intent(in) :: m
+      real(wp) :: ff(6), xi1, g1, tf
+      logical :: ok1
+      call ray_projection(x(1:2), x(3:4), x(5:6), tref0, xi1, ok1)
+      if (m == 1) then
+         tf = k*(tangential_slip(x) - 0.3_wp)
+      else
+         g1 = dot_product(nref0, x(1:2) - ((1.0_wp - xi1)*x(3:4) + xi1*x(5:6)))
+         tf = 0.3_wp*(0.5_wp*k - k*g1)
+      end if
+      ff = tf*matmul(tref0, relative_map(xi1))
+   end function tangential_force
+
    !> The contact force f_c = -N A(xi)^T n0 of the configuration x (slave, a, b), xi
    !> the point along n0 (ray_projection, reference segment along x), N = lam - k g
    function ray_force(x, lam) result(ff)
