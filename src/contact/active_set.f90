@@ -86,6 +86,10 @@ module vemcontact_contact_active_set
    !> Uzawa update then starts the multipliers from the soft penalty's forces, and the
    !> springs stiffen to hard_stiffness for the updates that remove the overclosure.
    real(wp), parameter, public :: hard_search_ratio = 1.0e-2_wp
+   !> How far (a fraction of its segment) a closed node of a stepwise pair may end a
+   !> load state beyond its segment's end before it is paired anew (release_stepwise):
+   !> round-off of a node at a vertex, not a slide
+   real(wp), parameter :: stepwise_slack = 1.0e-6_wp
 
    !> One contact pair's geometry.
    type :: pair_data_t
@@ -104,6 +108,10 @@ module vemcontact_contact_active_set
       real(wp) :: stiffness = 0.0_wp
       logical :: small_sliding = .false.      !< pairing fixed at the undeformed state
       logical :: paired = .false.             !< the small-sliding pairing has been made
+      !> a frictional NODE TO SURFACE pair with finite sliding: paired anew at the start
+      !> of every load state (increment) at its displacements, and that pairing kept
+      !> within it (set_pair_law, start_state)
+      logical :: stepwise = .false.
       !> SURFACE TO SURFACE: node to node with the partners of the interface node
       !> insertion; per slave entry a segment that ends at the partner (0: no partner),
       !> xi = 0 or 1 exactly, and the partner's vertex normal
@@ -208,6 +216,7 @@ module vemcontact_contact_active_set
       procedure :: augment_friction
       procedure :: commit_friction
       procedure :: change_friction
+      procedure :: release_stepwise
       procedure :: has_exact_friction
       procedure :: tangential_line_terms
       procedure :: count_state
@@ -309,12 +318,12 @@ contains
    !> The tangential law of every pair and the tangential spring of every entry: the
    !> stick slope times the tributary area, or for exact stick the augmentation
    !> stiffness of HARD (hard_stiffness E/h, scaled by STIFFNESS SCALE FACTOR).
-   !> Friction with the finite sliding of NODE TO SURFACE is refused: its slip
-   !> kinematics are in place (the arc length along the master, sliding_terms, and the
-   !> tangential force's sliding tangent, tangential_sliding), but the iteration does
-   !> not converge robustly with them yet (docs/contact-formulation.md, "Friction",
-   !> the numbers: more than 10 iterations with HARD, and a slide of 1.8 master segments
-   !> in one increment opened the whole contact).
+   !> A frictional NODE TO SURFACE pair with finite sliding is paired stepwise: anew
+   !> at the start of each load state, at the displacements it starts from, and kept
+   !> within it.  Re-paired at every iteration (with the slip along the master's arc
+   !> length and the sliding tangent of the tangential force), the stick/slip states
+   !> and the pairing did not settle together: the F1 pad in increments stopped at
+   !> MAXIT (docs/contact-formulation.md, "Friction with finite sliding").
    subroutine init_friction(self, model, error)
       type(contact_state_t), intent(inout) :: self
       type(model_t), intent(in) :: model
@@ -327,13 +336,6 @@ contains
             call set_pair_law(self, model, p, friction_params_t(it%has_friction, it%rough, it%mu, &
                                                                 it%stick_slope, it%cohesion))
          end associate
-         if (self%fric%laws(p)%law%frictional() .and. .not. self%pairs(p)%small_sliding) then
-            call append_message(error, location_string(model, model%pairs(p)%loc)//': error: friction '// &
-                                '(*FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING'//new_line('a')// &
-                                '  = help: write *CONTACT PAIR, INTERACTION=..., TYPE=NODE TO SURFACE, SMALL '// &
-                                'SLIDING (the pairing of the undeformed state, kept), or TYPE=SURFACE TO '// &
-                                'SURFACE; vemcontact does not combine friction with finite sliding', err_input)
-         end if
       end do
    end subroutine init_friction
 
@@ -350,6 +352,8 @@ contains
       integer :: i, q
       self%fric%params(p) = params
       call make_law(params%has_friction, params%rough, params%mu, params%slope, params%cohesion, self%fric%laws(p))
+      self%pairs(p)%stepwise = self%fric%laws(p)%law%frictional() .and. .not. self%pairs(p)%small_sliding .and. &
+                               .not. self%pairs(p)%node_to_node
       slope = self%fric%laws(p)%law%stick_slope()
       associate (first => self%pairs(p)%first, ns => self%pairs(p)%nslave)
          if (self%fric%laws(p)%law%exact() .and. ns > 0) then
@@ -392,11 +396,6 @@ contains
       do p = 1, size(self%pairs)
          if (model%pairs(p)%interaction /= inter) cycle
          call set_pair_law(self, model, p, params)
-         if (self%fric%laws(p)%law%frictional() .and. .not. self%pairs(p)%small_sliding) then
-            call append_message(error, location_string(model, model%pairs(p)%loc)//': error: friction '// &
-                                '(*CHANGE FRICTION) on a NODE TO SURFACE pair needs SMALL SLIDING', err_input)
-            return
-         end if
       end do
       if (.not. self%fric%on) return
       do i = 1, self%n
@@ -668,7 +667,7 @@ contains
                call pair_node_to_node(p, lo, hi)
                cycle
             end if
-            if (pd%small_sliding .and. pd%paired) then
+            if ((pd%small_sliding .or. pd%stepwise) .and. pd%paired) then
                ! the pairing stays that of the undeformed state: only the gaps move,
                ! linearly in u, so the frozen stiffness is exact
                do i = lo, hi
@@ -700,6 +699,13 @@ contains
                self%slide_ct(i) = 0.0_wp
                if (.not. pd%small_sliding) call sliding_terms(i, a, b)
                if (.not. pd%small_sliding) call carry_anchor(i, prev(i - lo + 1))
+               if (pd%stepwise) then
+                  ! the pairing is kept through the load state: no sliding part in the
+                  ! tangent, the arc length s0 of the slip kept
+                  self%slide_c(i) = 0.0_wp
+                  self%slide_w(:, i) = 0.0_wp
+                  self%slide_ct(i) = 0.0_wp
+               end if
             end do
             pd%paired = .true.
          end associate
@@ -1478,9 +1484,13 @@ contains
    !> of the new state then has the matrix of the previous state's factor when the
    !> active set holds (one numeric factorization less per load increment:
    !> softening and stiffening again were two new matrices, bench/friction_cost.py).
+   !> Frictional pairs with finite sliding (stepwise) are paired anew from here.
    subroutine start_state(self)
       class(contact_state_t), intent(inout) :: self
-      integer :: i
+      integer :: i, p
+      do p = 1, size(self%pairs)
+         if (self%pairs(p)%stepwise) self%pairs(p)%paired = .false.
+      end do
       do i = 1, self%n
          if (.not. self%pairs(self%pair(i))%hard) cycle
          if (self%active(i) .and. self%iseg(i) > 0 .and. self%lambda(i) > 0.0_wp) then
@@ -1490,6 +1500,52 @@ contains
          end if
       end do
    end subroutine start_state
+
+   !> The stepwise pairs (frictional, finite sliding) with a closed entry that slid
+   !> beyond the ends of its master segment at u (the arc length of its slip, S_a +
+   !> t.(x_s - x_a), outside [S_a, S_a + l] by more than stepwise_slack l) are to be
+   !> paired anew by the next project; released: some were.
+   subroutine release_stepwise(self, model, u, released)
+      class(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      logical, intent(out) :: released
+      real(wp) :: along, l
+      integer(ip) :: a, b
+      integer :: i, p
+      released = .false.
+      do i = 1, self%n
+         p = self%pair(i)
+         if (.not. self%pairs(p)%stepwise .or. .not. self%active(i) .or. self%iseg(i) == 0) cycle
+         a = self%pairs(p)%seg(1, self%iseg(i))
+         b = self%pairs(p)%seg(2, self%iseg(i))
+         l = length2(model%x(:, b) - model%x(:, a))
+         along = entry_slip(self, i, u) - self%pairs(p)%arc(self%iseg(i))
+         if (along >= -stepwise_slack*l .and. along <= (1.0_wp + stepwise_slack)*l) cycle
+         ! where the master goes on straight the segment's extension is the master
+         if (.not. turns_at(self%pairs(p)%seg, self%iseg(i), merge(b, a, along > l))) cycle
+         self%pairs(p)%paired = .false.
+         released = .true.
+      end do
+   contains
+      !> Whether the master turns at node v, the end of segment k: the segment on the
+      !> other side of v is not parallel to k (none there: the master ends).
+      logical function turns_at(seg, k, v) result(turns)
+         integer(ip), intent(in) :: seg(:, :)
+         integer(ip), intent(in) :: k, v
+         real(wp) :: d0(2), d1(2)
+         integer :: j
+         turns = .false.
+         d0 = model%x(:, seg(2, k)) - model%x(:, seg(1, k))
+         do j = 1, size(seg, 2)
+            if (j == k .or. .not. any(seg(:, j) == v)) cycle
+            d1 = model%x(:, seg(2, j)) - model%x(:, seg(1, j))
+            ! parallel to round-off of the coordinates
+            turns = abs(d0(1)*d1(2) - d0(2)*d1(1)) > 64.0_wp*epsilon(1.0_wp)*norm2(d0)*norm2(d1)
+            return
+         end do
+      end function turns_at
+   end subroutine release_stepwise
 
    !> Gaps of every entry at displacements u with the current pairing frozen,
    !> g = g0 + n.A(xi) u (linear in u), for the line search of the driver; entries

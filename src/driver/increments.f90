@@ -201,7 +201,8 @@ contains
       end do
       if (ramp) then
          call ramp_temperatures(cur, prev, frac, st)
-         call ramp_uplifts(cur%uplift, prev%uplift, frac, st%uplift)
+         if (allocated(cur%uplift) .and. allocated(prev%uplift)) call ramp_uplifts(cur%uplift, prev%uplift, frac, &
+                                                                                  st%uplift)
       end if
       ! distributed loads: the step's scaled by frac (or their amplitude), and with a
       ! ramp the previous step's applied ones scaled by 1 - frac, except those that
