@@ -164,6 +164,10 @@ module vemcontact_contact_active_set
       !> (0 where the pairing is fixed), and c_t = t.(u_b - u_a), the slip's change
       !> with xi (-c_t) in the sliding tangent
       real(wp), allocatable :: slide_s0(:), slide_ct(:)
+      !> stepwise pairs: the arc length s0 of the load state's pairing, taken off the
+      !> slip and the anchor while the pairing is kept (their difference then keeps its
+      !> digits: arc lengths of metres, elastic slips of micrometres)
+      real(wp), allocatable :: slide_base(:)
       logical, allocatable :: active(:)
       !> the entry had a master segment at the start of the step and has none at its
       !> end: it slid past the end of an open master surface (set by the driver)
@@ -585,7 +589,7 @@ contains
       allocate (self%normal(2, n), source=0.0_wp)
       allocate (self%slide_c(n), source=0.0_wp)
       allocate (self%slide_w(6, n), source=0.0_wp)
-      allocate (self%slide_s0(n), self%slide_ct(n), source=0.0_wp)
+      allocate (self%slide_s0(n), self%slide_ct(n), self%slide_base(n), source=0.0_wp)
       allocate (self%active(n), source=.false.)
       allocate (self%lambda(n), source=0.0_wp)
       allocate (self%k_full(n), source=0.0_wp)
@@ -683,6 +687,7 @@ contains
             call closest_segments(grid, xl, pd%lseg, pd%lslave, radius, self%iseg(lo:hi), &
                                   self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
             do i = lo, hi
+               if (pd%stepwise) call shift_arc(i, self%slide_base(i))
                call keep_previous(i, prev(i - lo + 1))
                if (self%iseg(i) == 0) cycle
                if (.not. pd%small_sliding) call ray_pair(i, pd%seg, grid)
@@ -701,16 +706,27 @@ contains
                if (.not. pd%small_sliding) call carry_anchor(i, prev(i - lo + 1))
                if (pd%stepwise) then
                   ! the pairing is kept through the load state: no sliding part in the
-                  ! tangent, the arc length s0 of the slip kept
+                  ! tangent; the slip and anchor counted from the arc length s0
                   self%slide_c(i) = 0.0_wp
                   self%slide_w(:, i) = 0.0_wp
                   self%slide_ct(i) = 0.0_wp
+                  call shift_arc(i, -self%slide_s0(i))
+                  self%slide_s0(i) = 0.0_wp
                end if
             end do
             pd%paired = .true.
          end associate
       end do
    contains
+      !> Entry i's slip and anchor counted from ds further back along the master
+      !> (slide_base less ds).
+      subroutine shift_arc(i, ds)
+         integer, intent(in) :: i
+         real(wp), intent(in) :: ds
+         self%fric%slip(i) = self%fric%slip(i) + ds
+         self%fric%anchor(i) = self%fric%anchor(i) + ds
+         if (ds < 0.0_wp .or. ds > 0.0_wp) self%slide_base(i) = self%slide_base(i) - ds
+      end subroutine shift_arc
       !> The fixed pairing of a SURFACE TO SURFACE pair (node_partners) and its gaps.
       subroutine pair_node_to_node(p, lo, hi)
          integer, intent(in) :: p, lo, hi
@@ -998,8 +1014,12 @@ contains
          sl(i) = entry_slip(self, i, u)
          nf(i) = self%normal_force(i)
       end do
+      ! the slips' round-off: of the displacements, and of the arc length s0 they carry
+      ! under finite sliding (positions along the master, metres where the slips are
+      ! micrometres: near the limit of a strength reduction the dam's stick/slip states
+      ! flipped on it until MAXIT)
       call self%fric%update(self%pair, sl, nf, self%active .and. self%iseg > 0, self%length*self%thick, nchanged, &
-                            closing_slips, 16.0_wp*epsilon(1.0_wp)*maxval(abs(u)))
+                            closing_slips, 16.0_wp*epsilon(1.0_wp)*max(maxval(abs(u)), maxval(abs(self%slide_s0))))
    end subroutine update_friction
 
    !> The shear force that entry i's law carries closed at zero normal force (the
