@@ -90,7 +90,8 @@ module vemcontact_driver_linear
       logical :: fell_back = .false.
       !> the *EQUATION constraints, resolved; `k` holds T^T K T (vemcontact_driver_equations)
       type(constraint_set_t) :: cs
-      !> where every pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE): the nodes of
+      !> where every pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE) and some pair
+      !> has friction or may gain it (*CHANGE FRICTION): the nodes of
       !> the contact rows (slave nodes and master segment nodes of every pair), which
       !> the METIS ordering eliminates last, and their dofs, on which `solve_columns`
       !> reads the contact compliance from the factor's trailing block
@@ -196,7 +197,8 @@ contains
             call move_alloc(ptr2, adj_ptr)
             call move_alloc(adj2, adj)
          end if
-         call fixed_pairing_nodes(model%nnode, contact, self%contact_nodes, self%contact_dofs)
+         if (may_have_friction(model, contact)) call fixed_pairing_nodes(model%nnode, contact, self%contact_nodes, &
+                                                                  self%contact_dofs)
       end if
       call equation_graph(model%nnode, self%cs, adj_ptr, adj, error)
       if (allocated(error)) return
@@ -512,6 +514,21 @@ contains
       end if
       if (.not. done) call self%solver%solve(b, x, error)
    end subroutine solve_columns
+
+   !> Whether some pair is frictional now or a step's *CHANGE FRICTION may make it so:
+   !> only then does the contact iteration solve compliance columns (condensed_applies),
+   !> which the ordering of the contact nodes last serves.
+   pure logical function may_have_friction(model, contact) result(frictional)
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(in) :: contact
+      integer :: s
+      frictional = contact%fric%on
+      if (frictional .or. .not. allocated(model%steps)) return
+      do s = 1, size(model%steps)
+         if (allocated(model%steps(s)%friction_changes)) frictional = frictional .or. &
+            size(model%steps(s)%friction_changes) > 0
+      end do
+   end function may_have_friction
 
    !> The nodes of the contact rows of `contact` (every pair's slave nodes and master
    !> segment nodes, sorted) and their dofs, where every pair's pairing is fixed
