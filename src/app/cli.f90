@@ -41,7 +41,8 @@ contains
           'options:'//nl// &
           '  -o, --output DIR      write results into DIR (created if missing)'//nl// &
           '  --ordering METHOD     fill-reducing ordering: auto (default), metis (METIS on'//nl// &
-          '                        the node graph), cholmod (CHOLMOD''s default strategy)'//nl// &
+          '                        the node graph; fixed-pairing contact nodes last),'//nl// &
+          '                        cholmod (CHOLMOD''s default strategy)'//nl// &
           '  --solver NAME         linear solver: auto (default: cholmod below 200000'//nl// &
           '                        unknowns or with contact, else gamg if built with'//nl// &
           '                        PETSc), cholmod (sparse Cholesky), and with PETSc:'//nl// &

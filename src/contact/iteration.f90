@@ -129,8 +129,9 @@ module vemcontact_contact_iteration
       !> (vemcontact_contact_condensed), kept across load states with the factor
       type(compliance_cache_t) :: cache
    contains
-      !> x(:, c) = A^-1 b(:, c) with the current factor, for every column c (by default
-      !> one solve_system per column; a direct solver solves them together)
+      !> x(:, c) = A^-1 b(:, c) with the current factor, for columns c of contact rows,
+      !> at least at the contact nodes (by default one solve_system per column; a
+      !> direct solver solves them together, or reads them from its trailing block)
       procedure :: solve_columns
       procedure(contact_matrix_i), deferred :: contact_matrix
       procedure(factorize_i), deferred :: numeric_factorize

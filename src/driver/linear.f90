@@ -24,7 +24,7 @@ module vemcontact_driver_linear
    use vemcontact_sparse_pattern, only: build_pattern
    use vemcontact_solver_linear_solver, only: linear_solver_t
    use vemcontact_solver_factory, only: make_solver, solver_auto, solver_cholmod
-   use vemcontact_solver_ordering, only: node_graph_from_elements, nodal_metis_ordering
+   use vemcontact_solver_ordering, only: node_graph_from_elements, nodal_metis_ordering, nodal_metis_ordering_last
    use vemcontact_driver_validate, only: validate_elements
    use vemcontact_driver_ranges, only: validate_ranges
    use vemcontact_driver_memory, only: check_memory
@@ -90,6 +90,12 @@ module vemcontact_driver_linear
       logical :: fell_back = .false.
       !> the *EQUATION constraints, resolved; `k` holds T^T K T (vemcontact_driver_equations)
       type(constraint_set_t) :: cs
+      !> where every pairing is fixed (SMALL SLIDING, SURFACE TO SURFACE) and some pair
+      !> has friction or may gain it (*CHANGE FRICTION): the nodes of
+      !> the contact rows (slave nodes and master segment nodes of every pair), which
+      !> the METIS ordering eliminates last, and their dofs, on which `solve_columns`
+      !> reads the contact compliance from the factor's trailing block
+      integer(ip), allocatable :: contact_nodes(:), contact_dofs(:)
    contains
       procedure :: setup
       procedure :: solve_state
@@ -179,6 +185,7 @@ contains
          self%solver%owned_dofs = 2*self%partition%nodes(self%solver%rank + 1)
          self%t_partition = wall_time() - t1
       end if
+      if (allocated(self%contact_nodes)) deallocate (self%contact_nodes, self%contact_dofs)
       if (present(contact)) then
          if (contact%n > 0) then
             t1 = wall_time()
@@ -190,6 +197,8 @@ contains
             call move_alloc(ptr2, adj_ptr)
             call move_alloc(adj2, adj)
          end if
+         if (may_have_friction(model, contact)) call fixed_pairing_nodes(model%nnode, contact, self%contact_nodes, &
+                                                                  self%contact_dofs)
       end if
       call equation_graph(model%nnode, self%cs, adj_ptr, adj, error)
       if (allocated(error)) return
@@ -254,7 +263,11 @@ contains
       else if (self%solver%takes_ordering .and. (self%ordering == ordering_metis .or. &
           (self%ordering == ordering_auto .and. model%nnode >= metis_threshold))) then
          allocate (perm(2*model%nnode))
-         call nodal_metis_ordering(model%nnode, adj_ptr, adj, perm, error)
+         if (allocated(self%contact_nodes)) then
+            call nodal_metis_ordering_last(model%nnode, adj_ptr, adj, self%contact_nodes, perm, error)
+         else
+            call nodal_metis_ordering(model%nnode, adj_ptr, adj, perm, error)
+         end if
          if (allocated(error)) return
          call self%solver%analyze(self%k, error, perm, model%x)
       else
@@ -484,15 +497,60 @@ contains
       call self%solver%solve(f, u, error)
    end subroutine solve_system
 
-   !> Several right-hand sides with the current factor at once (a direct solver's
-   !> blocked solve).
+   !> Columns of contact rows with the current factor, x(:, c) = A^-1 b(:, c) at the
+   !> contact nodes at least: from the factor's trailing block where the ordering
+   !> put the contact nodes last (solve_trailing; x is then zero away from them),
+   !> otherwise by a direct solver's blocked full solve.
    subroutine solve_columns(self, b, x, error)
       class(linear_system_t), intent(inout) :: self
       real(wp), intent(in) :: b(:, :)
       real(wp), intent(out) :: x(:, :)
       type(error_t), allocatable, intent(out) :: error
-      call self%solver%solve(b, x, error)
+      logical :: done
+      done = .false.
+      if (allocated(self%contact_dofs)) then
+         call self%solver%solve_trailing(self%contact_dofs, b, x, done, error)
+         if (allocated(error)) return
+      end if
+      if (.not. done) call self%solver%solve(b, x, error)
    end subroutine solve_columns
+
+   !> Whether some pair is frictional now or a step's *CHANGE FRICTION may make it so:
+   !> only then does the contact iteration solve compliance columns (condensed_applies),
+   !> which the ordering of the contact nodes last serves.
+   pure logical function may_have_friction(model, contact) result(frictional)
+      type(model_t), intent(in) :: model
+      type(contact_state_t), intent(in) :: contact
+      integer :: s
+      frictional = contact%fric%on
+      if (frictional .or. .not. allocated(model%steps)) return
+      do s = 1, size(model%steps)
+         if (allocated(model%steps(s)%friction_changes)) frictional = frictional .or. &
+            size(model%steps(s)%friction_changes) > 0
+      end do
+   end function may_have_friction
+
+   !> The nodes of the contact rows of `contact` (every pair's slave nodes and master
+   !> segment nodes, sorted) and their dofs, where every pair's pairing is fixed
+   !> (SMALL SLIDING or SURFACE TO SURFACE): the rows of any of its pairings then lie
+   !> on them.  Unallocated otherwise (finite sliding pairs over the whole master).
+   pure subroutine fixed_pairing_nodes(nnode, contact, nodes, dofs)
+      integer(ip), intent(in) :: nnode
+      type(contact_state_t), intent(in) :: contact
+      integer(ip), allocatable, intent(out) :: nodes(:), dofs(:)
+      logical, allocatable :: on(:)
+      integer :: p
+      integer(ip) :: i
+      if (contact%n == 0 .or. .not. allocated(contact%pairs)) return
+      if (.not. all(contact%pairs%small_sliding .or. contact%pairs%node_to_node)) return
+      allocate (on(nnode), source=.false.)
+      on(contact%node(:contact%n)) = .true.
+      do p = 1, size(contact%pairs)
+         if (size(contact%pairs(p)%seg) > 0) on(reshape(contact%pairs(p)%seg, [size(contact%pairs(p)%seg)])) = .true.
+      end do
+      nodes = pack([(i, i=1, nnode)], on)
+      dofs = reshape(transpose(reshape([2*nodes - 1, 2*nodes], [size(nodes), 2])), [2*size(nodes)])
+   end subroutine fixed_pairing_nodes
 
    subroutine elastic_times(self, u, ku)
       class(linear_system_t), intent(in) :: self

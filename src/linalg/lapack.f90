@@ -4,7 +4,7 @@ module vemcontact_linalg_lapack
    implicit none
    private
 
-   public :: dsyev, dgetrf, dgetrs
+   public :: dsyev, dgetrf, dgetrs, dpotrs
 
    interface
       !> Eigenvalues (ascending) and optionally eigenvectors of a real symmetric matrix.
@@ -33,5 +33,14 @@ module vemcontact_linalg_lapack
          real(wp), intent(inout) :: b(ldb, *)
          integer, intent(out) :: info
       end subroutine dgetrs
+      !> Solve A X = B with the Cholesky factor of A (uplo 'L': A = L L^T).
+      pure subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
+         import :: wp
+         character, intent(in) :: uplo
+         integer, intent(in) :: n, nrhs, lda, ldb
+         real(wp), intent(in) :: a(lda, *)
+         real(wp), intent(inout) :: b(ldb, *)
+         integer, intent(out) :: info
+      end subroutine dpotrs
    end interface
 end module vemcontact_linalg_lapack

@@ -18,6 +18,7 @@ module vemcontact_solver_cholmod
    use vemcontact_error, only: error_t, fatal_error, err_solver, err_internal
    use vemcontact_sparse_matrix, only: sym_csc_t
    use vemcontact_solver_linear_solver, only: linear_solver_t, check_matrix_arrays
+   use vemcontact_linalg_lapack, only: dpotrs
    implicit none
    private
 
@@ -28,6 +29,9 @@ module vemcontact_solver_cholmod
       st_order = 4, st_mismatch = 5, st_too_large = 6
 
    !> CHOLMOD's ordering codes (cholmod_core.h), for `ordering_name`.
+   !> The largest dense trailing block read for `solve_trailing` (values; 128 MB).
+   real(wp), parameter :: trailing_max_values = 1.6e7_wp
+
    character(len=*), parameter :: ordering_names(0:6) = [character(len=11) :: 'natural', 'given', &
       'amd', 'metis', 'nesdis', 'colamd', 'postordered']
 
@@ -38,11 +42,19 @@ module vemcontact_solver_cholmod
       !> Whether the factor is supernodal (always requested).
       logical :: supernodal = .false.
       type(c_ptr), private :: handle = c_null_ptr
+      !> The factor's trailing block for `solve_trailing` (lower triangle of L from
+      !> the first position of its dofs on) and the original dof of each of its
+      !> positions; `trailing_state` 0: not read for this factor, 1: read, -1: too
+      !> large or unavailable (full solves).
+      real(wp), allocatable, private :: lt(:, :)
+      integer(ip), allocatable, private :: tdof(:)
+      integer, private :: trailing_state = 0
    contains
       procedure :: analyze
       procedure :: factorize
       procedure :: solve_one
       procedure :: solve_many
+      procedure :: solve_trailing
       procedure :: rcond
       procedure :: release
       procedure :: describe
@@ -101,6 +113,24 @@ module vemcontact_solver_cholmod
          integer(c_int), intent(out) :: ordering, is_super
       end function vc_cholmod_stats
 
+      integer(c_int) function vc_cholmod_trailing_size(handle, ndofs, dofs, mt) &
+         bind(c, name='vc_cholmod_trailing_size')
+         import :: c_int, c_ptr, c_int64_t, c_int32_t
+         type(c_ptr), value :: handle
+         integer(c_int64_t), value :: ndofs
+         integer(c_int32_t), intent(in) :: dofs(*)
+         integer(c_int64_t), intent(out) :: mt
+      end function vc_cholmod_trailing_size
+
+      integer(c_int) function vc_cholmod_trailing_block(handle, mt, lt, dof) &
+         bind(c, name='vc_cholmod_trailing_block')
+         import :: c_int, c_ptr, c_int64_t, c_double
+         type(c_ptr), value :: handle
+         integer(c_int64_t), value :: mt
+         real(c_double), intent(out) :: lt(*)
+         integer(c_int64_t), intent(out) :: dof(*)
+      end function vc_cholmod_trailing_block
+
       subroutine vc_cholmod_free(handle) bind(c, name='vc_cholmod_free')
          import :: c_ptr
          type(c_ptr), intent(inout) :: handle
@@ -126,6 +156,7 @@ contains
       character(len=24) :: buf
 
       if (present(coords)) continue   ! a factorization has no use for the coordinates
+      call forget_trailing(self)
       self%failed_column = 0
       self%nnz_factor = 0
       self%flops = 0.0_wp
@@ -186,6 +217,7 @@ contains
       integer(c_int64_t) :: info
       character(len=24) :: buf
 
+      call forget_trailing(self)
       self%failed_column = 0
       if (.not. c_associated(self%handle)) then
          call fatal_error(error, 'CHOLMOD factorize called before analyze', err_internal)
@@ -244,6 +276,85 @@ contains
       call solve_status(st, error)
    end subroutine solve_many
 
+   !> x = A^-1 b at `dofs` for columns b(:, k) that vanish off them, from the
+   !> factor's trailing block: with A = P^T L L^T P and the dofs in the positions
+   !> p0..n of the elimination order, (A^-1 b) there is (L_t L_t^T)^-1 b_t, two dense
+   !> triangular solves (LAPACK dpotrs) of the block's size mt instead of two sparse
+   !> solves of the whole factor.  The block is read once per factor; `done` is false
+   !> (the caller solves in full) when mt**2 exceeds nnz(L) or trailing_max_values,
+   !> i.e. when the dofs are not ordered last.  x is zero off the block.
+   subroutine solve_trailing(self, dofs, b, x, done, error)
+      class(cholmod_solver_t), intent(inout) :: self
+      integer(ip), intent(in) :: dofs(:)
+      real(wp), intent(in) :: b(:, :)
+      real(wp), intent(out) :: x(:, :)
+      logical, intent(out) :: done
+      type(error_t), allocatable, intent(out) :: error
+      real(wp), allocatable :: bt(:, :)
+      integer :: mt, info
+
+      done = .false.
+      x = 0.0_wp
+      if (any(shape(x) /= shape(b))) then
+         call fatal_error(error, 'CHOLMOD solve: b and x differ in shape', err_internal)
+         return
+      end if
+      if (self%trailing_state == 0) call read_trailing(self, dofs, error)
+      if (allocated(error) .or. self%trailing_state /= 1) return
+      mt = size(self%tdof)
+      if (size(b, 2) == 0) then
+         done = .true.
+         return
+      end if
+      bt = b(self%tdof, :)
+      call dpotrs('L', mt, size(b, 2), self%lt, mt, bt, mt, info)
+      if (info /= 0) then
+         call fatal_error(error, 'CHOLMOD trailing solve: dpotrs failed', err_internal)
+         return
+      end if
+      x(self%tdof, :) = bt
+      done = .true.
+   end subroutine solve_trailing
+
+   !> Read the trailing block of the current factor that holds `dofs`, or mark it
+   !> unavailable (too large for a dense block, or not a supernodal LL^T factor).
+   subroutine read_trailing(self, dofs, error)
+      class(cholmod_solver_t), intent(inout) :: self
+      integer(ip), intent(in) :: dofs(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer(c_int64_t) :: mt
+      integer(c_int64_t), allocatable :: dof(:)
+      integer(c_int) :: st
+
+      self%trailing_state = -1
+      if (size(dofs) == 0) return
+      st = vc_cholmod_trailing_size(self%handle, int(size(dofs), c_int64_t), int(dofs, c_int32_t), mt)
+      if (st /= st_ok) then
+         call solve_status(st, error)
+         return
+      end if
+      if (real(mt, wp)**2 > min(real(self%nnz_factor, wp), trailing_max_values)) return
+      allocate (self%lt(mt, mt), dof(mt))
+      st = vc_cholmod_trailing_block(self%handle, mt, self%lt, dof)
+      if (st == st_order .or. st == st_mismatch) then
+         call solve_status(st, error)
+         return
+      else if (st /= st_ok) then
+         deallocate (self%lt)
+         return
+      end if
+      self%tdof = int(dof, ip)
+      self%trailing_state = 1
+   end subroutine read_trailing
+
+   !> Drop the trailing block of the previous factor.
+   pure subroutine forget_trailing(self)
+      class(cholmod_solver_t), intent(inout) :: self
+      if (allocated(self%lt)) deallocate (self%lt)
+      if (allocated(self%tdof)) deallocate (self%tdof)
+      self%trailing_state = 0
+   end subroutine forget_trailing
+
    !> CHOLMOD's reciprocal condition estimate of the current factor,
    !> (min diag(L) / max diag(L))**2: cheap but rough (exact only for diagonal
    !> matrices; 0.39 for a 20x20 Laplacian whose true value is ~6e-3).
@@ -265,6 +376,7 @@ contains
       class(cholmod_solver_t), intent(inout) :: self
       call vc_cholmod_free(self%handle)
       self%handle = c_null_ptr
+      call forget_trailing(self)
       self%failed_column = 0
       self%nnz_factor = 0
       self%flops = 0.0_wp

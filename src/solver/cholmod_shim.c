@@ -303,6 +303,84 @@ int vc_cholmod_stats(void *handle, int64_t *nnz_factor, double *flops, int *orde
     return VC_CHOLMOD_OK;
 }
 
+/* The trailing block of the factor that holds the dofs `dofs` (ndofs of them,
+ * 1-based original indices): p0 is the first position of the elimination order
+ * (after CHOLMOD's postorder, through L->Perm) that holds one of them, and the
+ * block is rows and columns p0..n-1 of L.  With A = P' L L' P, for b supported
+ * on those positions, (A^-1 b) there is (L_tt L_tt')^-1 b_t: a forward
+ * substitution stays in the trailing rows and the back substitution there needs
+ * no other rows.  *mt = n - p0 is the size of the block. */
+int vc_cholmod_trailing_size(void *handle, int64_t ndofs, const int32_t *dofs, int64_t *mt)
+{
+    vc_cholmod_t *h = handle;
+    const SuiteSparse_long *lperm;
+    SuiteSparse_long *pos;
+    int64_t n, k, p0;
+
+    *mt = 0;
+    if (!h || !h->l || !h->factorized) return VC_CHOLMOD_ORDER;
+    n = (int64_t)h->l->n;
+    lperm = h->l->Perm;
+    if (!lperm || ndofs < 1) return VC_CHOLMOD_BAD_INPUT;
+    pos = malloc((size_t)(n > 0 ? n : 1) * sizeof(*pos));
+    if (!pos) return VC_CHOLMOD_NOMEM;
+    for (k = 0; k < n; k++) pos[lperm[k]] = k;
+    p0 = n;
+    for (k = 0; k < ndofs; k++) {
+        if (dofs[k] < 1 || dofs[k] > n) { free(pos); return VC_CHOLMOD_BAD_INPUT; }
+        if (pos[dofs[k] - 1] < p0) p0 = pos[dofs[k] - 1];
+    }
+    free(pos);
+    *mt = n - p0;
+    return VC_CHOLMOD_OK;
+}
+
+/* Copy the trailing mt x mt block of the supernodal factor L (lower triangle,
+ * column-major, leading dimension mt; the strict upper triangle zero) into lt
+ * and the original dofs (1-based) of its positions into dof.  Only an LL'
+ * supernodal real factor is read: any other is VC_CHOLMOD_FAILED (the caller
+ * falls back to full solves).  In a supernode of columns k1..k2-1 the values
+ * of column j are px[s] + (j-k1)*nsrow + r for its row list pi[s]..pi[s+1]-1,
+ * whose first k2-k1 rows are k1..k2-1 themselves (the rows above the diagonal
+ * are not part of L). */
+int vc_cholmod_trailing_block(void *handle, int64_t mt, double *lt, int64_t *dof)
+{
+    vc_cholmod_t *h = handle;
+    cholmod_factor *l;
+    const SuiteSparse_long *super, *pi, *px, *ls, *lperm;
+    const double *lx;
+    int64_t n, p0, s, j, r, k1, k2, nsrow, i;
+
+    if (!h || !h->l || !h->factorized) return VC_CHOLMOD_ORDER;
+    l = h->l;
+    n = (int64_t)l->n;
+    if (mt < 0 || mt > n) return VC_CHOLMOD_MISMATCH;
+    if (!l->is_super || !l->is_ll || l->xtype != CHOLMOD_REAL || !l->Perm) return VC_CHOLMOD_FAILED;
+    super = l->super;
+    pi = l->pi;
+    px = l->px;
+    ls = l->s;
+    lx = l->x;
+    lperm = l->Perm;
+    p0 = n - mt;
+    memset(lt, 0, (size_t)(mt * mt > 0 ? mt * mt : 1) * sizeof(double));
+    for (k1 = p0; k1 < n; k1++) dof[k1 - p0] = lperm[k1] + 1;
+    for (s = (int64_t)l->nsuper - 1; s >= 0; s--) {
+        k1 = super[s];
+        k2 = super[s + 1];
+        if (k2 <= p0) break;
+        nsrow = pi[s + 1] - pi[s];
+        for (j = (k1 > p0 ? k1 : p0); j < k2; j++) {
+            for (r = j - k1; r < nsrow; r++) {
+                i = ls[pi[s] + r];
+                if (i < j || i >= n) return VC_CHOLMOD_FAILED;
+                lt[(i - p0) + (j - p0) * mt] = lx[px[s] + (j - k1) * nsrow + r];
+            }
+        }
+    }
+    return VC_CHOLMOD_OK;
+}
+
 /* Free everything and null the handle; a null handle is fine. */
 void vc_cholmod_free(void **handle)
 {

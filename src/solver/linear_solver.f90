@@ -53,6 +53,7 @@ module vemcontact_solver_linear_solver
       integer :: rank = 0
    contains
       procedure :: sum_over_ranks
+      procedure :: solve_trailing
       procedure(analyze_i), deferred :: analyze
       procedure(factorize_i), deferred :: factorize
       procedure(solve_one_i), deferred :: solve_one
@@ -162,4 +163,21 @@ contains
          end if
       end if
    end subroutine check_matrix_arrays
+
+   !> x = A^-1 b at the dofs `dofs` for right-hand sides b(:, k) that vanish off
+   !> them, when the backend can do it cheaply (a direct solver whose ordering
+   !> eliminates those dofs last: the factor's trailing block); `done` false
+   !> otherwise, and the caller solves in full.  Entries of x off `dofs` are
+   !> unspecified.  The default: not available.
+   subroutine solve_trailing(self, dofs, b, x, done, error)
+      class(linear_solver_t), intent(inout) :: self
+      integer(ip), intent(in) :: dofs(:)
+      real(wp), intent(in) :: b(:, :)
+      real(wp), intent(out) :: x(:, :)
+      logical, intent(out) :: done
+      type(error_t), allocatable, intent(out) :: error
+      ! read the arguments only to say that this backend has no such path
+      done = .false. .and. self%processes > 0 .and. size(dofs) > 0 .and. size(b) > 0
+      x = 0.0_wp
+   end subroutine solve_trailing
 end module vemcontact_solver_linear_solver

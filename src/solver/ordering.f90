@@ -10,7 +10,7 @@ module vemcontact_solver_ordering
    implicit none
    private
 
-   public :: nodal_metis_ordering, node_graph_from_elements
+   public :: nodal_metis_ordering, nodal_metis_ordering_last, node_graph_from_elements
 
 contains
 
@@ -41,6 +41,68 @@ contains
          perm(2*k) = 2*node_perm(k)
       end do
    end subroutine nodal_metis_ordering
+
+   !> As `nodal_metis_ordering`, with the nodes `last` (distinct, 1..nnode)
+   !> eliminated last, in the order given: METIS orders the graph without them.
+   !> Their dofs then hold the factor's trailing block, from which the solver reads
+   !> A^-1 on them (the contact compliance) by dense solves of their size.  For a
+   !> contact interface between bodies, the interface is a separator of the graph,
+   !> which nested dissection would also eliminate late.
+   subroutine nodal_metis_ordering_last(nnode, adj_ptr, adj, last, perm, error)
+      integer(ip), intent(in) :: nnode
+      integer(i8), intent(in) :: adj_ptr(:)
+      integer(ip), intent(in) :: adj(:)
+      integer(ip), intent(in) :: last(:)
+      integer(ip), intent(out) :: perm(:)
+      type(error_t), allocatable, intent(out) :: error
+      integer(ip), allocatable :: sub(:), orig(:), node_perm(:), sadj(:)
+      integer(i8), allocatable :: sptr(:)
+      integer(ip) :: i, k, ns
+      integer(i8) :: p
+
+      if (size(perm) /= 2*nnode .or. any(last < 1) .or. any(last > nnode)) then
+         call fatal_error(error, 'nodal_metis_ordering_last: perm must have 2*nnode entries, last within 1..nnode', &
+                          err_internal)
+         return
+      end if
+      ! sub(i): node i's index in the graph without `last` (0 for the last ones)
+      allocate (sub(nnode), source=1_ip)
+      sub(last) = 0
+      if (count(sub == 0) /= size(last)) then
+         call fatal_error(error, 'nodal_metis_ordering_last: repeated node in last', err_internal)
+         return
+      end if
+      ns = 0
+      allocate (orig(nnode - size(last)))
+      do i = 1, nnode
+         if (sub(i) == 0) cycle
+         ns = ns + 1
+         sub(i) = ns
+         orig(ns) = i
+      end do
+      allocate (sptr(ns + 1), sadj(count(sub(adj) > 0)))
+      sptr(1) = 1
+      do k = 1, ns
+         i = orig(k)
+         sptr(k + 1) = sptr(k)
+         do p = adj_ptr(i), adj_ptr(i + 1) - 1
+            if (sub(adj(p)) == 0) cycle
+            sadj(sptr(k + 1)) = sub(adj(p))
+            sptr(k + 1) = sptr(k + 1) + 1
+         end do
+      end do
+      allocate (node_perm(ns))
+      if (ns > 0) call metis_nodend(ns, sptr, sadj, node_perm, error)
+      if (allocated(error)) return
+      do k = 1, ns
+         perm(2*k - 1) = 2*orig(node_perm(k)) - 1
+         perm(2*k) = 2*orig(node_perm(k))
+      end do
+      do k = 1, size(last)
+         perm(2*(ns + k) - 1) = 2*last(k) - 1
+         perm(2*(ns + k)) = 2*last(k)
+      end do
+   end subroutine nodal_metis_ordering_last
 
    !> Node adjacency graph of a mesh: i and j (i /= j) are neighbours when they
    !> share an element.  `elem_ptr(nelem+1)`/`elem_conn` is the model's 1-based
