@@ -1523,7 +1523,8 @@ contains
 
    !> The stepwise pairs (frictional, finite sliding) with a closed entry that slid
    !> beyond the ends of its master segment at u (the arc length of its slip, S_a +
-   !> t.(x_s - x_a), outside [S_a, S_a + l] by more than stepwise_slack l) are to be
+   !> t.(x_s - x_a) = slide_base + entry_slip, outside [S_a, S_a + l] by more than
+   !> stepwise_slack l) are to be
    !> paired anew by the next project; released: some were.
    subroutine release_stepwise(self, model, u, released)
       class(contact_state_t), intent(inout) :: self
@@ -1540,7 +1541,7 @@ contains
          a = self%pairs(p)%seg(1, self%iseg(i))
          b = self%pairs(p)%seg(2, self%iseg(i))
          l = length2(model%x(:, b) - model%x(:, a))
-         along = entry_slip(self, i, u) - self%pairs(p)%arc(self%iseg(i))
+         along = self%slide_base(i) + entry_slip(self, i, u) - self%pairs(p)%arc(self%iseg(i))
          if (along >= -stepwise_slack*l .and. along <= (1.0_wp + stepwise_slack)*l) cycle
          ! where the master goes on straight the segment's extension is the master
          if (.not. turns_at(self%pairs(p)%seg, self%iseg(i), merge(b, a, along > l))) cycle
