@@ -114,7 +114,7 @@ def limit_equilibrium(h5, cohesion=0.0):
     return ((W - U) * MU + cohesion * B) / H, fs, srm, closed
 
 
-@pytest.mark.parametrize("pair", ["NODE TO SURFACE, SMALL SLIDING", "SURFACE TO SURFACE"])
+@pytest.mark.parametrize("pair", ["NODE TO SURFACE, SMALL SLIDING", "NODE TO SURFACE", "SURFACE TO SURFACE"])
 @pytest.mark.parametrize("hard", [False, True], ids=["LINEAR", "HARD"])
 @pytest.mark.parametrize("uplift", [False, True], ids=["dry", "uplift"])
 def test_factor_matches_limit_equilibrium(exe, tmp_path, pair, hard, uplift):
