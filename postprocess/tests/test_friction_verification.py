@@ -163,7 +163,7 @@ def test_cattaneo_mindlin_partial_slip(exe, tmp_path, case):
 
 
 def hertz_variant(exe, tmp_path, name, mu=None, block_e=None):
-    """inputs/hertz_1155_fem.inp with SMALL SLIDING (friction needs it), optionally
+    """inputs/hertz_1155_fem.inp with SMALL SLIDING (as docs/friction-verification.md measured), optionally
     *FRICTION mu (exact stick) and the block's Young's modulus; the pair's results."""
     text = (ROOT / "inputs" / "hertz_1155_fem.inp").read_text()
     text = text.replace("INPUT=meshes/", f"INPUT={ROOT / 'inputs' / 'meshes'}/")
