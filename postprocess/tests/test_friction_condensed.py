@@ -85,10 +85,16 @@ def test_trailing_block_compliance_matches_full_solves(exe, tmp_path):
     last and the compliance columns come from dense solves with the factor's trailing
     block (the unit test test_solver_cholmod checks that path against full solves to
     1e-12 on a matrix); with `--ordering cholmod` the block is the whole factor and
-    the columns are full solves.  The two runs take the same iterations and end in the
-    same stick/slip states, and their displacements and joint tractions agree to 1e-12
-    relative: the two orderings' round-off through the same iterations (measured
-    1.7e-15 to 1.1e-14 in the 5 steps at 4000 unknowns)."""
+    the columns are full solves.  The two runs end in the same stick/slip states, and
+    their displacements and joint tractions agree to 1e-12 relative: the converged
+    frozen system of the same states is the same, solved to round-off (measured
+    3.6e-15 to 1.3e-14 in the 5 steps at 4000 unknowns).
+
+    With the trailing block the states are also settled on the contact space between
+    full solves (settle_states): no increment takes more iterations than with full
+    solves, every increment at most 4 (measured 2, 3, 2, 3, 4; full solves 2, 3, 2, 5,
+    5), and the run fewer in all: the increments where the slip front moves (4 and 5)
+    are where settling saves."""
     bench = bench_module()
     path = tmp_path / "block.inp"
     bench.block_deck(str(path), 4000, 4, True)
@@ -100,7 +106,9 @@ def test_trailing_block_compliance_matches_full_solves(exe, tmp_path):
         assert r.returncode == 0, r.stderr
         h5[order] = out / (path.stem + ".h5")
     it = {k: [int(r["iteration"].size) for r in iteration_records(v)] for k, v in h5.items()}
-    assert it["metis"] == it["cholmod"], it
+    assert all(a <= b for a, b in zip(it["metis"], it["cholmod"])), it
+    assert max(it["metis"]) <= 4, it
+    assert sum(it["metis"]) < sum(it["cholmod"]), it
     with h5py.File(h5["metis"], "r") as fa, h5py.File(h5["cholmod"], "r") as fb:
         for key in sorted(fa["steps"]):
             ga, gb = fa[f"steps/{key}"], fb[f"steps/{key}"]

@@ -86,6 +86,10 @@ module vemcontact_contact_iteration
    !> Columns of the contact compliance solved together (add_columns): at most
    !> condensed_block_values numbers per block array, 4 to 64 columns
    integer, parameter :: condensed_block_values = 16000000, condensed_block_min = 4, condensed_block_max = 64
+   !> The rounds of settle_states per iteration: each is one return mapping of the
+   !> states at the contact dofs of the frozen solution, at the cost of two dense
+   !> solves with the factor's trailing block
+   integer, parameter :: settle_rounds = 8
 
    !> One iteration, as logged and written to the results.
    type :: iteration_record_t
@@ -123,6 +127,9 @@ module vemcontact_contact_iteration
       !> of the last solve_contact: the contact compliance columns solved (add_columns)
       !> and their time (part of t_solve)
       integer :: columns = 0
+      !> the last solve_columns read the factor's trailing block (x exact at the
+      !> contact dofs, zero elsewhere): set by the systems that can
+      logical :: columns_local = .false.
       real(wp) :: t_columns = 0
       type(iteration_record_t), allocatable :: records(:)
       !> the contact compliance columns computed with the current factor
@@ -237,6 +244,9 @@ module vemcontact_contact_iteration
       !> on the pairing from then on)
       logical :: newton = .false.
       logical :: rebuilt = .false.        !< the last matrix needed a new pattern
+      !> the last solve was the condensed one, whole (step 1): the residual at u lies on
+      !> the contact rows alone (settle_states)
+      logical :: condensed = .false.
       logical, allocatable :: history(:, :), held(:)
       !> entries kept closed after a cycle between open and closed (pin_cycle)
       logical, allocatable :: pinned(:)
@@ -366,6 +376,8 @@ contains
          end if
          call check_cycle(s, u, contact, error)
          if (allocated(error)) return
+         call settle_states(s, sys, model, fixed, fext, u, contact, error)
+         if (allocated(error)) return
       end do
       write (buf, '(a,i0,a,es10.3,a)') 'error: contact iterations did not converge in ', s%maxit, &
          ' iterations (relative residual ', s%rel, ')'
@@ -456,6 +468,7 @@ contains
       same_matrix = same_pattern
       if (same_matrix) same_matrix = same_key(sys%factored_key, contact)
       solved = .false.
+      s%condensed = .false.
       ! friction with the factor's pairing: the springs and states differ from the
       ! factor's by low-rank terms, solved exactly on the contact space
       ! (condensed_solve)
@@ -464,6 +477,7 @@ contains
          if (same_pairing(sys%factored_key, contact)) then
             call condensed_solve(s, sys, fixed, fext, u, contact, solved, error)
             if (allocated(error)) return
+            s%condensed = solved
          end if
       end if
       if (.not. solved .and. same_pattern .and. .not. same_matrix) then
@@ -484,6 +498,7 @@ contains
          if (condensed) then
             call condensed_solve(s, sys, fixed, fext, u, contact, solved, error)
             if (allocated(error)) return
+            s%condensed = solved
          end if
       end if
       ! the unsymmetric parts the factor lacks (the sliding of the pairing, slipping
@@ -518,7 +533,62 @@ contains
       ! a frictional node of finite sliding stops within slide_limit past its segment's end
       s%step = min(s%step, contact%slide_step(u - s%u0))
       if (s%step < 1.0_wp) u = s%u0 + s%step*(u - s%u0)
+      s%condensed = s%condensed .and. s%step >= 1.0_wp
    end subroutine solve_frozen
+
+   !> The stick/slip states and active set settled on the contact space before the
+   !> next full solve (a semismooth Newton on the contact unknowns).  After a whole
+   !> condensed solve, u balances the bulk: the residual of the new states at u lies
+   !> on the contact dofs, and the next frozen solve's values there come from the
+   !> factor's trailing block alone (two dense solves and the Woodbury capacitance,
+   !> no solve of the whole system).  The states are updated at those values
+   !> (update_contact), as the next iteration would, until they hold or
+   !> settle_rounds have passed; the full solve then starts from them.  Only where
+   !> the columns are read from the trailing block (columns_local): elsewhere a
+   !> round costs as much as an iteration.
+   subroutine settle_states(s, sys, model, fixed, fext, u, contact, error)
+      type(iteration_state_t), intent(inout) :: s
+      class(contact_system_t), intent(inout) :: sys
+      type(model_t), intent(in) :: model
+      logical, intent(in) :: fixed(:)
+      real(wp), intent(in) :: fext(:), u(:)
+      type(contact_state_t), intent(inout) :: contact
+      type(error_t), allocatable, intent(out) :: error
+      type(woodbury_t) :: wb
+      real(wp), allocatable :: w(:, :), z(:), x(:)
+      logical :: ok
+      integer :: round
+      real(wp) :: t0
+      if (.not. (s%condensed .and. sys%columns_local .and. contact%fric%on)) return
+      if (.not. same_pairing(sys%factored_key, contact)) return
+      t0 = wall_time()
+      allocate (w(size(u), 1), z(0))
+      do round = 1, settle_rounds
+         if (s%nslip == 0 .and. s%nchanged == 0) exit
+         call prepare_woodbury(sys, fixed, contact, wb, ok, error)
+         if (allocated(error) .or. .not. ok) exit
+         if (.not. sys%columns_local) exit
+         call frozen_residual(s, sys, fixed, fext, u, contact)
+         call sys%solve_columns(reshape(s%r, [size(u), 1]), w, error)
+         if (allocated(error)) exit
+         where (fixed) w(:, 1) = 0.0_wp
+         if (size(z) /= wb%r) then
+            deallocate (z)
+            allocate (z(wb%r))
+         end if
+         call woodbury_rhs(wb, contact, fixed, w(:, 1), z)
+         call woodbury_correction(wb, contact, fixed, z, s%r)
+         where (fixed) s%r = 0.0_wp
+         call sys%solve_columns(reshape(s%r, [size(u), 1]), w, error)
+         if (allocated(error)) exit
+         if (.not. sys%columns_local) exit
+         where (fixed) w(:, 1) = 0.0_wp
+         x = u + w(:, 1)
+         call update_contact(s, sys, model, x, contact, error)
+         if (allocated(error)) exit
+      end do
+      sys%t_solve = sys%t_solve + (wall_time() - t0)
+   end subroutine settle_states
 
    !> A converged state of frictional finite-sliding pairs (stepwise: the pairing of
    !> the load state's start, kept) in which a closed slave node slid past the end of

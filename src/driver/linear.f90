@@ -512,6 +512,7 @@ contains
          call self%solver%solve_trailing(self%contact_dofs, b, x, done, error)
          if (allocated(error)) return
       end if
+      self%columns_local = done
       if (.not. done) call self%solver%solve(b, x, error)
    end subroutine solve_columns
 
