@@ -52,13 +52,6 @@ module vemcontact_contact_active_set
    !> (ray_pair) is followed from the closest one; it is next to it on a polyline
    !> whose reference normals turn by less than a right angle per segment.
    integer, parameter :: ray_walk_limit = 4
-   !> How far past the end of its segment, in segments, a frictional finite-sliding
-   !> entry's master point may move in one solve (slide_step): the solve sees the
-   !> master's surface as the line of that segment, and beyond its vertex the gap
-   !> leaves that line by the kink times the overshoot, which the augmentation
-   !> stiffness of HARD turns into forces far beyond the pressures (the pad's onset,
-   !> docs/contact-formulation.md, "Friction with finite sliding").
-   real(wp), parameter, public :: slide_limit = 1.0e-2_wp
 
    !> A reference gap g0 within this many units of round-off of the coordinates
    !> involved (eps times their largest magnitude) is taken as exactly zero.  Surfaces
@@ -161,9 +154,8 @@ module vemcontact_contact_active_set
       real(wp), allocatable :: slide_c(:), slide_w(:, :)
       !> finite sliding, the slip s = s0 + t.A(xi) u along the master (entry_slip):
       !> s0 = S_a + t.(X_s - X_a), S_a the reference arc length at the segment's start
-      !> (0 where the pairing is fixed), and c_t = t.(u_b - u_a), the slip's change
-      !> with xi (-c_t) in the sliding tangent
-      real(wp), allocatable :: slide_s0(:), slide_ct(:)
+      !> (0 where the pairing is fixed)
+      real(wp), allocatable :: slide_s0(:)
       !> stepwise pairs: the arc length s0 of the load state's pairing, taken off the
       !> slip and the anchor while the pairing is kept (their difference then keeps its
       !> digits: arc lengths of metres, elastic slips of micrometres)
@@ -208,8 +200,6 @@ module vemcontact_contact_active_set
       procedure :: linear_forces
       procedure :: tangent_times
       procedure :: has_sliding
-      procedure :: has_sliding_friction
-      procedure :: slide_step
       procedure :: springs
       procedure :: table
       procedure :: max_penetration
@@ -589,7 +579,7 @@ contains
       allocate (self%normal(2, n), source=0.0_wp)
       allocate (self%slide_c(n), source=0.0_wp)
       allocate (self%slide_w(6, n), source=0.0_wp)
-      allocate (self%slide_s0(n), self%slide_ct(n), self%slide_base(n), source=0.0_wp)
+      allocate (self%slide_s0(n), self%slide_base(n), source=0.0_wp)
       allocate (self%active(n), source=.false.)
       allocate (self%lambda(n), source=0.0_wp)
       allocate (self%k_full(n), source=0.0_wp)
@@ -701,7 +691,6 @@ contains
                self%slide_c(i) = 0.0_wp
                self%slide_w(:, i) = 0.0_wp
                self%slide_s0(i) = 0.0_wp
-               self%slide_ct(i) = 0.0_wp
                if (.not. pd%small_sliding) call sliding_terms(i, a, b)
                if (.not. pd%small_sliding) call carry_anchor(i, prev(i - lo + 1))
                if (pd%stepwise) then
@@ -709,8 +698,7 @@ contains
                   ! tangent; the slip and anchor counted from the arc length s0
                   self%slide_c(i) = 0.0_wp
                   self%slide_w(:, i) = 0.0_wp
-                  self%slide_ct(i) = 0.0_wp
-                  call shift_arc(i, -self%slide_s0(i))
+                     call shift_arc(i, -self%slide_s0(i))
                   self%slide_s0(i) = 0.0_wp
                end if
             end do
@@ -764,7 +752,7 @@ contains
       !> at a, so that s = s0 + t.A(xi) u = S(xi) + t.(x_s - x_xi) is the arc length of
       !> the projection (the current x_s - x_xi is normal to the current segment: its
       !> t component is the gap times the segment's rotation), continuous across
-      !> segment changes; c_t = t.(u_b - u_a), ds/dxi = -c_t at fixed u.
+      !> segment changes.
       subroutine sliding_terms(i, a, b)
          integer, intent(in) :: i
          integer(ip), intent(in) :: a, b
@@ -778,7 +766,6 @@ contains
          t = tangent_of(self%normal(:, i))
          self%slide_s0(i) = self%pairs(self%pair(i))%arc(self%iseg(i)) + &
                             dot_product(t, model%x(:, self%node(i)) - model%x(:, a))
-         self%slide_ct(i) = dot_product(t, u(2*b - 1:2*b) - u(2*a - 1:2*a))
       end subroutine sliding_terms
 
       !> The stick anchor of a frictional entry under finite sliding, a position on
@@ -1189,8 +1176,7 @@ contains
          an = matmul(self%normal(:, i), relative_map(self%xi(i)))
          kc = 0.0_wp
          if (sliding) kc = sliding_tangent(self%xi(i), self%normal(:, i), self%k(i), self%normal_force(i), &
-                                           sliding_c(self, i), &
-                                           self%slide_w(:, i)) + tangential_sliding(self, i)
+                                           self%slide_c(i), self%slide_w(:, i))
          call scatter(jv, nodes, self%k(i)*an*dot_product(an, ve) + matmul(kc, ve))
          if (self%fric%state(i) == tangent_stick) then
             at = matmul(tangent_of(self%normal(:, i)), relative_map(self%xi(i)))
@@ -1203,86 +1189,12 @@ contains
       end do
    end subroutine tangent_times
 
-   !> The part of the tangent that the motion of the projection adds to the
-   !> tangential force T A(xi)^T t of entry i (finite sliding): xi moves by w.v, which
-   !> turns A(xi)^T t by T (0, t, -t) w.v and changes the force itself, a sticking
-   !> entry's slip s = s0 + t.A(xi) u by -c_t w.v (kt times it), a slipping entry's
-   !> normal force by k c w.v (dT/dN times it); the same rank-one form as the normal
-   !> force's (sliding_tangent, with t for n).  The segment's t is its reference
-   !> tangent, fixed while the pairing stays on it.
-   pure function tangential_sliding(self, i) result(kc)
-      type(contact_state_t), intent(in) :: self
-      integer, intent(in) :: i
-      real(wp) :: kc(6, 6)
-      kc = 0.0_wp
-      select case (self%fric%state(i))
-      case (tangent_stick)
-         kc = sliding_tangent(self%xi(i), tangent_of(self%normal(:, i)), self%fric%kt(i), -self%fric%force(i), &
-                              self%slide_ct(i), self%slide_w(:, i))
-      case (tangent_slip)
-         kc = sliding_tangent(self%xi(i), tangent_of(self%normal(:, i)), -self%fric%dnormal(i)*self%k(i), &
-                              -self%fric%force(i), sliding_c(self, i), self%slide_w(:, i))
-      end select
-   end function tangential_sliding
-
-   !> c = n.(u_b - u_a) of entry i in the sliding tangent: the gap's change -c dxi as
-   !> the projection moves along the current segment, measured along the reference
-   !> normal.  Frictional HARD entries keep it too: through a slipping force mu N
-   !> its k c (k the augmentation stiffness) couples the slide to the normal force,
-   !> and a tangent without it made the multiplier updates converge linearly (by a
-   !> tenth per iteration on the inclined block: 12 iterations instead of 9).
-   pure real(wp) function sliding_c(self, i) result(c)
-      type(contact_state_t), intent(in) :: self
-      integer, intent(in) :: i
-      c = self%slide_c(i)
-   end function sliding_c
-
    !> Whether the pairing of some active entry follows the sliding (finite sliding
    !> node to surface): then the tangent has the part of sliding_tangent.
    pure logical function has_sliding(self)
       class(contact_state_t), intent(in) :: self
       has_sliding = any(self%active .and. any(abs(self%slide_w) > 0.0_wp, dim=1))
    end function has_sliding
-
-   !> Whether some active entry of a finite-sliding pair carries a tangential force
-   !> (sticking or slipping).
-   pure logical function has_sliding_friction(self)
-      class(contact_state_t), intent(in) :: self
-      has_sliding_friction = .false.
-      if (.not. self%fric%on) return
-      has_sliding_friction = any(self%active .and. any(abs(self%slide_w) > 0.0_wp, dim=1) .and. &
-                                 (self%fric%state == tangent_stick .or. self%fric%state == tangent_slip))
-   end function has_sliding_friction
-
-   !> The step length t <= 1 along du that moves no active frictional entry of a
-   !> finite-sliding pair more than slide_limit segments past the end of its segment
-   !> (xi + t w.du within [-slide_limit, 1 + slide_limit], w = dxi/du at the current
-   !> pairing); 1 when none would.
-   pure real(wp) function slide_step(self, du) result(t)
-      class(contact_state_t), intent(in) :: self
-      real(wp), intent(in) :: du(:)
-      integer(ip) :: nodes(3)
-      real(wp) :: ve(6), dxi, lim
-      integer :: i, j
-      t = 1.0_wp
-      if (.not. self%fric%on) return
-      do i = 1, self%n
-         if (.not. self%active(i)) cycle
-         if (.not. (self%fric%state(i) == tangent_stick .or. self%fric%state(i) == tangent_slip)) cycle
-         if (.not. any(abs(self%slide_w(:, i)) > 0.0_wp)) cycle
-         nodes = nodes_of(self, i)
-         do j = 1, 3
-            ve(2*j - 1:2*j) = du(2*nodes(j) - 1:2*nodes(j))
-         end do
-         dxi = dot_product(self%slide_w(:, i), ve)
-         if (dxi > 0.0_wp) then
-            lim = max(0.0_wp, 1.0_wp - self%xi(i)) + slide_limit
-         else
-            lim = max(0.0_wp, self%xi(i)) + slide_limit
-         end if
-         if (abs(dxi)*t > lim) t = lim/abs(dxi)
-      end do
-   end function slide_step
 
    !> Normal force N = max(0, lambda - k g) of entry i (0 when inactive).
    pure real(wp) function normal_force(self, i) result(f)
@@ -1461,7 +1373,7 @@ contains
          do j = 1, 3
             ve(2*j - 1:2*j) = du(2*nodes(j) - 1:2*nodes(j))
          end do
-         dg(i) = dg(i) - sliding_c(self, i)*dot_product(self%slide_w(:, i), ve)
+         dg(i) = dg(i) - self%slide_c(i)*dot_product(self%slide_w(:, i), ve)
       end do
    end subroutine gap_change
 

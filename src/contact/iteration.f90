@@ -63,9 +63,6 @@ module vemcontact_contact_iteration
    real(wp), parameter :: gmres_stall_friction = 0.9_wp
    !> The reduction of the residual a solve aims at (krylov_solve)
    real(wp), parameter :: gmres_reduction = 1.0e-6_wp
-   !> The reduction of the residual that a Newton step on the pairing with sliding
-   !> friction accepts when GMRES stalls before gmres_reduction (krylov_solve)
-   real(wp), parameter :: gmres_inexact = 1.0e-4_wp
    !> ... and with slipping friction: the solve then is the frozen system itself (not
    !> a Newton step on the pairing), so it is solved to its round-off floor, as the
    !> direct solve's refinement does (at 1e-6 the slip patch test stopped at 1e-7 of
@@ -455,11 +452,8 @@ contains
       ! Newton on the pairing once the active set holds: the tangent carries the
       ! part of finite sliding (sliding_tangent), which the factor lacks: GMRES with
       ! the factor as preconditioner solves with it
-      ! (with friction on a finite-sliding pair from the first iteration: the slide
-      ! that a frozen pairing leaves out moves the gaps by c dxi, which the slipping
-      ! force mu N follows)
       s%newton = s%newton .or. s%settled
-      s%op%sliding = (s%newton .or. contact%has_sliding_friction()) .and. contact%has_sliding()
+      s%op%sliding = s%newton .and. contact%has_sliding()
       ! the matrix of the current factor: solve again without factorizing; a
       ! matrix that differs from it only by a small move of the pairing: the old
       ! factor as the preconditioner
@@ -527,11 +521,7 @@ contains
       ! a frozen-pairing solve minimizes its penalty energy with the current
       ! springs: cut it when it overshoots into new contact
       s%step = 1.0_wp
-      ! (and a Newton step with sliding friction while the active set still changes)
-      if (.not. s%op%sliding .or. (contact%has_sliding_friction() .and. .not. s%settled)) &
-         s%step = energy_step(s, sys, fixed, fext, u, contact)
-      ! a frictional node of finite sliding stops within slide_limit past its segment's end
-      s%step = min(s%step, contact%slide_step(u - s%u0))
+      if (.not. s%op%sliding) s%step = energy_step(s, sys, fixed, fext, u, contact)
       if (s%step < 1.0_wp) u = s%u0 + s%step*(u - s%u0)
       s%condensed = s%condensed .and. s%step >= 1.0_wp
    end subroutine solve_frozen
@@ -622,21 +612,12 @@ contains
       real(wp), intent(in) :: u(:)
       type(contact_state_t), intent(inout) :: contact
       type(error_t), allocatable, intent(out) :: error
-      real(wp), allocatable :: gfrozen(:), dg(:)
+      real(wp), allocatable :: gfrozen(:)
       logical, allocatable :: hold(:)
       real(wp) :: t0
       t0 = wall_time()
       allocate (gfrozen(contact%n))
       call contact%frozen_gaps(u, gfrozen)
-      if (s%op%sliding .and. contact%has_sliding_friction()) then
-         ! the Newton step on the pairing: its gaps move by the linearized change with
-         ! the projection's motion too (a node that slid far is measured against the
-         ! master point it left by the frozen gap alone)
-         allocate (dg(contact%n))
-         call contact%frozen_gaps(s%u0, gfrozen)
-         call contact%gap_change(contact%active, u - s%u0, dg, .true.)
-         where (contact%active) gfrozen = gfrozen + dg
-      end if
       call contact%project(model, u, error)
       if (allocated(error)) return
       hold = hold_nodes(contact%active, gfrozen, contact%gap, s%held)
@@ -933,10 +914,6 @@ contains
       restart = gmres_restart
       maxit = gmres_maxit
       stall = 0.5_wp
-      if (contact%has_sliding_friction() .and. s%op%sliding) then
-         restart = gmres_restart_friction
-         maxit = gmres_maxit_friction
-      end if
       if (old_states) then
          ! with the factor of earlier stick/slip states GMRES's rate has plateaus near
          ! the floor, where one iteration that barely lowered the residual stopped it
@@ -955,13 +932,6 @@ contains
       if (allocated(error)) return
       x = s%u0 + dx
       ok = res%converged
-      ! a Newton step on the pairing with sliding friction that GMRES stalled on near its
-      ! tolerance is still an inexact Newton step: at the pad's onset of sliding it
-      ! stopped at 1.3e-6 of the initial residual (the floor 1.1e-6), and the
-      ! fallback, the frozen-pairing step with the coupling lagged, opened 8 of its 9
-      ! nodes
-      if (.not. ok .and. s%op%sliding .and. contact%has_sliding_friction()) &
-         ok = res%residual <= gmres_inexact*res%initial
    end subroutine krylov_solve
 
    !> x = u0 + dx with J dx = r(u0) solved exactly with the current factor K0 of
@@ -1357,10 +1327,6 @@ contains
       op%contact => contact
       op%fixed => fixed
       op%mask = contact%multiplier_entries()
-      ! with friction on a finite-sliding pair the compliance of the factor, as
-      ! where the pairing is fixed: with the sliding part (which leaves out the k c
-      ! term of frictional HARD entries, sliding_c) the updates converged by a tenth per
-      ! iteration on the inclined block (15 iterations against 12)
       op%sliding = contact%has_sliding()
       ! -g, without the gaps within their round-off
       b = merge(-contact%gap, 0.0_wp, op%mask .and. abs(contact%gap) > noise)
@@ -1394,13 +1360,8 @@ contains
          jt%contact => self%contact
          jt%fixed => self%fixed
          jt%sliding = .true.
-         if (self%contact%has_sliding_friction()) then
-            call gmres(jt, w, du, multiplier_reduction*safe_norm2(w), 0.0_wp, gmres_restart_friction, &
-                       gmres_maxit_friction, 0.5_wp, res, error)
-         else
-            call gmres(jt, w, du, multiplier_reduction*safe_norm2(w), 0.0_wp, gmres_restart, gmres_maxit, &
-                       0.5_wp, res, error)
-         end if
+         call gmres(jt, w, du, multiplier_reduction*safe_norm2(w), 0.0_wp, gmres_restart, gmres_maxit, &
+                    0.5_wp, res, error)
          solved = res%converged .and. .not. allocated(error)
          if (allocated(error)) deallocate (error)
       end if

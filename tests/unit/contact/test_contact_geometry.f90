@@ -280,7 +280,8 @@ program test_contact_geometry
                         [0.0_wp, 0.0_wp], [2.0_wp, 0.0_wp]))
    call t%close(js(4, 1), -2.0_wp*0.5_wp, 1.0e-15_wp, 'N B w^T: force moves to b as the slave slides')
    ! ---- the tangential force of finite sliding along the reference normal (friction on
-   ! NODE TO SURFACE, contact_state_t%tangential_sliding): f = T A(xi)^T t0, xi the ray
+   ! NODE TO SURFACE re-paired at every iteration; the stepwise pairing that runs keeps
+   ! the pairing within a load state and needs no such term): f = T A(xi)^T t0, xi the ray
    ! point, t0 the reference tangent a -> b, n0 = (t0_y, -t0_x).  Sticking, T = kt (s -
    ! s_p) with the slip s = s0 + t0.A(xi) u, s0 = t0.(X_s - X_a), which the ray makes
    ! the reference arc length xi l0; slipping, T = mu (lam - k g).  Its Jacobian, xi
