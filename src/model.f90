@@ -211,6 +211,11 @@ module vemcontact_model
       !> is found once in the undeformed configuration and kept; otherwise it is
       !> found anew in the deformed configuration at every iteration
       logical :: small_sliding = .false.
+      !> NODE TO SURFACE: slave and master are the deck's master and slave, exchanged
+      !> because the deck's master is the softer or finer face (vemcontact_contact_roles)
+      logical :: roles_swapped = .false.
+      !> ROLES=AUTO (vemcontact, the default): the roles may be exchanged; KEEP: never
+      logical :: auto_roles = .true.
       type(source_loc_t) :: loc
    end type contact_pair_t
 

@@ -559,13 +559,15 @@ contains
       if (p%cur_inter > 0) model%interactions(p%cur_inter)%has_behavior = .true.
    end subroutine drop_behavior
 
-   !> *CONTACT PAIR, INTERACTION=name, TYPE=NODE TO SURFACE|SURFACE TO SURFACE [, SMALL SLIDING];
-   !> data lines: slave surface, master surface (one pair per line).
+   !> *CONTACT PAIR, INTERACTION=name, TYPE=NODE TO SURFACE|SURFACE TO SURFACE [, SMALL SLIDING]
+   !> [, ROLES=AUTO|KEEP]; data lines: slave surface, master surface (one pair per line).
+   !> ROLES (vemcontact): AUTO lets a node-to-surface pair take the softer, finer face as
+   !> its slave (vemcontact_contact_roles), KEEP the surfaces as written.
    subroutine read_contact_pair(p, kw)
       type(deck_parser_t), intent(inout) :: p
       type(keyword_line_t), intent(in) :: kw
-      character(len=:), allocatable :: inter, ctype, shown
-      logical :: found
+      character(len=:), allocatable :: inter, ctype, shown, roles
+      logical :: found, found_roles
       integer :: nline, formulation
       type(pair_ref_t), allocatable :: t(:)
       type(source_loc_t) :: kwloc
@@ -573,6 +575,7 @@ contains
       kwloc = here(p)
       call get_param(kw, 'INTERACTION', inter, found)
       call get_param(kw, 'TYPE', ctype, found)
+      call get_param(kw, 'ROLES', roles, found_roles)
       select case (ctype)
       case ('NODETOSURFACE')
          formulation = pair_node_to_surface
@@ -613,6 +616,7 @@ contains
             r%master = to_upper(squeeze(field(p, 2)))
             r%interaction = inter
             r%small_sliding = has_param(kw, 'SMALL SLIDING') .or. has_param(kw, 'SMALLSLIDING')
+            r%auto_roles = .not. (found_roles .and. roles == 'KEEP')
             r%formulation = formulation
             r%loc = here(p)
          end associate
@@ -749,7 +753,7 @@ contains
             end if
             model%pairs(k) = contact_pair_t(slave=islave, master=imaster, interaction=iinter, &
                                             formulation=r%formulation, small_sliding=r%small_sliding, &
-                                            loc=r%loc)
+                                            auto_roles=r%auto_roles, loc=r%loc)
          end associate
       end do
    contains

@@ -114,7 +114,7 @@ module vemcontact_deck_registry
                                       keyword_spec_t('PRESSURE PENETRATION', ctx_step, data_required), &
                                       keyword_spec_t('CHANGE FRICTION', ctx_step, data_none)]
 
-   type(param_spec_t), parameter :: params(163) = [ &
+   type(param_spec_t), parameter :: params(164) = [ &
                                     param_spec_t(kw_include, 'INPUT', par_value, .true., val_path, ''), &
                                     param_spec_t(kw_node, 'NSET', par_value, .false., val_name, ''), &
                                     param_spec_t(kw_element, 'TYPE', par_value, .true., val_name, ''), &
@@ -153,6 +153,7 @@ module vemcontact_deck_registry
                                     param_spec_t(kw_contact_pair, 'TYPE', par_value, .true., val_name, ''), &
                                     param_spec_t(kw_contact_pair, 'ADJUST', par_value, .false., val_path, ''), &
                                     param_spec_t(kw_contact_pair, 'SMALL SLIDING', par_flag, .false., val_name, ''), &
+                                    param_spec_t(kw_contact_pair, 'ROLES', par_value, .false., val_name, 'AUTO KEEP'), &
                                     param_spec_t(kw_contact_controls, 'MAXIT', par_value, .false., val_int, ''), &
                                     param_spec_t(kw_contact_controls, 'TOLERANCE', par_value, .false., val_real, ''), &
                                    param_spec_t(kw_contact_controls, 'STIFFNESS SCALE FACTOR', par_value, .false., &

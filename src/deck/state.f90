@@ -63,6 +63,7 @@ module vemcontact_deck_state
    type :: pair_ref_t
       character(len=:), allocatable :: slave, master, interaction  !< upper case
       logical :: small_sliding = .false.
+      logical :: auto_roles = .true.          !< ROLES=AUTO (default) or KEEP
       integer :: formulation = 0              !< model's pair_node_to_surface / pair_surface_to_surface
       type(source_loc_t) :: loc
    end type pair_ref_t

@@ -24,6 +24,7 @@ module vemcontact_driver_static
    use vemcontact_driver_validate, only: element_warnings
    use vemcontact_driver_ranges, only: validate_ranges
    use vemcontact_driver_contact_checks, only: check_contact_pairs
+   use vemcontact_driver_pair_roles, only: choose_pair_roles
    use vemcontact_driver_load_state, only: load_state_t, init_load_state, advance_load_state
    use vemcontact_driver_increments, only: increment_control_t, loads_at
    use vemcontact_driver_assembly, only: element_stresses, element_strains, assemble_loads
@@ -218,6 +219,13 @@ contains
       ! of contact%init is E times the thickness); sys%setup checks the rest
       call validate_ranges(model, error)
       if (allocated(error)) return
+      ! node to surface pairs with the softer, finer face as the slave, before anything
+      ! is built on their roles
+      call choose_pair_roles(model, warnings, error)
+      if (allocated(error)) return
+      do iw = 1, size(warnings)
+         call log%say(warnings(iw)%s)
+      end do
       ! pairs that would make the contact meaningless (a face on its own master's element,
       ! an overclosure no contact starts with)
       call check_contact_pairs(model, error)
@@ -864,7 +872,10 @@ contains
                                      pack(tab%status, tab%pair == ip_), error, sel, &
                                      cshear=pack(tab%cshear, tab%pair == ip_), cfluidp=fluid, &
                                      strength=strength_in_force(model, rs, istep, ip_), &
-                                     water_entered=wet)
+                                     water_entered=wet, &
+                                     slave_surface=model%surfaces(model%pairs(ip_)%slave)%name, &
+                                     master_surface=model%surfaces(model%pairs(ip_)%master)%name, &
+                                     roles_swapped=model%pairs(ip_)%roles_swapped)
             if (allocated(error)) return
          end do
       end associate

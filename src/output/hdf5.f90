@@ -281,7 +281,8 @@ contains
    !> 4 slip), with *UPLIFT CFLUIDP beside CPRESS and, with pressure penetration, the
    !> attribute water_entered.
    subroutine h5_write_contact(self, istep, ipair, node_id, x, copen, cpress, cslip, cnarea, status, error, sel, &
-                               cshear, cfluidp, strength, water_entered)
+                               cshear, cfluidp, strength, water_entered, slave_surface, master_surface, &
+                               roles_swapped)
       class(h5_writer_t), intent(inout) :: self
       integer, intent(in) :: istep, ipair
       integer(ip), intent(in) :: node_id(:)
@@ -298,6 +299,10 @@ contains
       !> pressure penetration: the length along the joint the water filled (attribute
       !> water_entered)
       real(wp), intent(in), optional :: water_entered
+      !> the slave and master surfaces as the pair used them (attributes slave_surface,
+      !> master_surface), and whether they are the deck's exchanged (roles_swapped, 0/1)
+      character(len=*), intent(in), optional :: slave_surface, master_surface
+      logical, intent(in), optional :: roles_swapped
       type(field_selection_t) :: w
       character(len=:), allocatable :: gname
       character(len=24) :: buf
@@ -337,6 +342,15 @@ contains
       end if
       if (present(water_entered)) then
          if (.not. allocated(error)) call put_real_attribute(self, grp, 'water_entered', water_entered, error)
+      end if
+      if (present(slave_surface)) then
+         if (.not. allocated(error)) call put_string_attribute(self, grp, 'slave_surface', slave_surface, error)
+      end if
+      if (present(master_surface)) then
+         if (.not. allocated(error)) call put_string_attribute(self, grp, 'master_surface', master_surface, error)
+      end if
+      if (present(roles_swapped)) then
+         if (.not. allocated(error)) call put_int_attribute(self, grp, 'roles_swapped', merge(1_ip, 0_ip, roles_swapped), error)
       end if
       call h5gclose_f(grp, hdferr)
       if (allocated(error)) return

@@ -1,0 +1,82 @@
+!> The slave and master of each NODE TO SURFACE pair as node to segment contact needs
+!> them: the softer and, with moduli alike, the finer face as the slave
+!> (vemcontact_contact_roles).  A pair written the other way round is exchanged before
+!> any contact state is built, and the log says so (a node-based slave surface serves as
+!> the master through the element sides it covers, a surface added to the model); where
+!> it cannot be (joint water on the pair) the log warns and names the better choices.
+module vemcontact_driver_pair_roles
+   use vemcontact_model, only: model_t, location_string, string_t
+   use vemcontact_model, only: surface_element
+   use vemcontact_error, only: error_t
+   use vemcontact_contact_roles, only: pair_roles, role_advice_t, roles_swap, roles_warn, sides_surface
+   implicit none
+   private
+
+   public :: choose_pair_roles
+
+contains
+
+   !> Exchange the surfaces of the pairs whose roles are the wrong way round; one log
+   !> line per exchanged or warned pair in `lines`.
+   subroutine choose_pair_roles(model, lines, error)
+      type(model_t), intent(inout) :: model
+      type(string_t), allocatable, intent(out) :: lines(:)
+      type(error_t), allocatable, intent(out) :: error
+      type(role_advice_t) :: advice
+      character(len=:), allocatable :: where
+      integer :: p, s
+      allocate (lines(0))
+      if (.not. allocated(model%pairs)) return
+      do p = 1, size(model%pairs)
+         advice = pair_roles(model, p, watered(model, p))
+         where = location_string(model, model%pairs(p)%loc)
+         select case (advice%action)
+         case (roles_swap)
+            if (model%surfaces(model%pairs(p)%slave)%kind /= surface_element) then
+               model%surfaces = [model%surfaces, sides_surface(model, p, error)]
+               if (allocated(error)) return
+               model%pairs(p)%slave = size(model%surfaces)
+            end if
+            s = model%pairs(p)%slave
+            model%pairs(p)%slave = model%pairs(p)%master
+            model%pairs(p)%master = s
+            model%pairs(p)%roles_swapped = .true.
+            lines = [lines, string_t('  note: '//where//': contact pair '//pair_text(p)//': '//advice%reason// &
+                                     '; node to surface constrains the slave''s nodes, so '// &
+                                     model%surfaces(model%pairs(p)%slave)%name//' is taken as the slave and '// &
+                                     model%surfaces(model%pairs(p)%master)%name//' as the master (the pair''s '// &
+                                     'contact results are on '//model%surfaces(model%pairs(p)%slave)%name//'''s nodes)')]
+         case (roles_warn)
+            lines = [lines, string_t('  warning: '//where//': contact pair '//pair_text(p)//': '//advice%reason// &
+                                     '; node-to-surface pressures will depend on the mesh ('//advice%kept_by// &
+                                     '): make '//model%surfaces(model%pairs(p)%master)%name// &
+                                     ' the slave or use TYPE=SURFACE TO SURFACE')]
+         end select
+      end do
+   end subroutine choose_pair_roles
+
+   !> Joint water names positions on the pair's slave face: *UPLIFT of the pair's
+   !> interaction in any step, *PRESSURE PENETRATION of the pair.
+   logical function watered(model, p)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: p
+      integer :: i, j
+      watered = .false.
+      if (.not. allocated(model%steps)) return
+      do i = 1, size(model%steps)
+         if (.not. allocated(model%steps(i)%uplift)) cycle
+         do j = 1, size(model%steps(i)%uplift)
+            if (model%steps(i)%uplift(j)%pair == p .or. &
+                model%steps(i)%uplift(j)%interaction == model%pairs(p)%interaction) watered = .true.
+         end do
+      end do
+   end function watered
+
+   pure function pair_text(p) result(s)
+      integer, intent(in) :: p
+      character(len=:), allocatable :: s
+      character(len=12) :: buf
+      write (buf, '(i0)') p
+      s = trim(buf)
+   end function pair_text
+end module vemcontact_driver_pair_roles
