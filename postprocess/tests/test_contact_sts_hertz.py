@@ -262,6 +262,67 @@ def test_hertz_1155_sts(exe, tmp_path):
     assert abs(fine / 83.95 - 1) < abs(p.max() / 83.95 - 1), (p.max(), fine)
 
 
+def disc_as_master(d):
+    """The paper's Hertz 1155 with the roles the other way round: the disc's lower arc
+    (the sides of its elements with both ends in HERTZ_SLAVE, on the mesh boundary) as
+    an element surface DISC_LOWER, the block's top nodes as the node surface BLOCK_TOP;
+    the deck's pair then reads BLOCK_TOP, DISC_LOWER.  Returns the deck text."""
+    src = os.path.join(os.path.dirname(__file__), "..", "..", "inputs")
+    mesh = open(os.path.join(src, "meshes", "ex2_hertz_1155_vem.inp")).read().splitlines()
+    elems, nset, block = {}, set(), None
+    for line in mesh:
+        if line.startswith("*"):
+            block = line.upper().replace(" ", "")
+            continue
+        if block == "*ELEMENT,TYPE=VPE,ELSET=DISC":
+            v = [int(t) for t in line.replace(",", " ").split()]
+            elems[v[0]] = v[1:]
+        elif block == "*NSET,NSET=HERTZ_SLAVE":
+            nset |= {int(t) for t in line.replace(",", " ").split()}
+    uses = {}
+    for c in elems.values():
+        for k in range(len(c)):
+            key = frozenset((c[k], c[(k + 1) % len(c)]))
+            uses[key] = uses.get(key, 0) + 1
+    sides = [f"{e}, S{k + 1}" for e, c in elems.items() for k in range(len(c))
+             if c[k] in nset and c[(k + 1) % len(c)] in nset and uses[frozenset((c[k], c[(k + 1) % len(c)]))] == 1]
+    assert len(sides) == 24
+    (d / "disc_lower.inp").write_text("*SURFACE, NAME=DISC_LOWER, TYPE=ELEMENT\n" + "\n".join(sides) +
+                                      "\n*SURFACE, NAME=BLOCK_TOP, TYPE=NODE\nHERTZ_MASTER\n")
+    text = open(os.path.join(src, "hertz_1155_vem.inp")).read()
+    text = text.replace("INPUT=meshes/", f"INPUT={os.path.abspath(os.path.join(src, 'meshes'))}/")
+    text = text.replace("*SURFACE INTERACTION", "*INCLUDE, INPUT=disc_lower.inp\n*SURFACE INTERACTION", 1)
+    text = text.replace("PRESSURE-OVERCLOSURE=LINEAR\n1.0e5\n", "PRESSURE-OVERCLOSURE=HARD\n")
+    text = text.replace("HERTZ_SLAVE, HERTZ_MASTER", "BLOCK_TOP, DISC_LOWER")
+    assert "BLOCK_TOP, DISC_LOWER" in text and "HARD" in text
+    return text
+
+
+@pytest.mark.parametrize("pair_type", ["NODE TO SURFACE", "SURFACE TO SURFACE"])
+def test_hertz_1155_disc_as_master(exe, tmp_path, pair_type):
+    """The paper's Hertz 1155 written with the soft disc as the master, HARD.  NODE TO
+    SURFACE: the roles are exchanged (roles_swapped; +15.4 % as written, ROLES=KEEP),
+    and the peak is the paper deck's (+0.79 %).  SURFACE TO SURFACE keeps the roles:
+    CPRESS is recovered on the disc's own sides, the polygon whose corners carry the
+    peaks, and the pair normal where both faces end on the symmetry line is their common
+    normal (the disc's end chord alone tilts by 0.013 and made a support-shared node of
+    it: +2.4 %; now +1.02 %).  Asserted: within 2 % of 83.60 (issue 22's target for a
+    curved master), and the peak at the axis."""
+    text = disc_as_master(tmp_path).replace("TYPE=NODE TO SURFACE", f"TYPE={pair_type}")
+    name = "m1155_" + pair_type.split()[0]
+    (tmp_path / f"{name}.inp").write_text(text)
+    r = subprocess.run([exe, "-q", "-o", str(tmp_path / "out"), str(tmp_path / f"{name}.inp")],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with h5py.File(tmp_path / "out" / f"{name}.h5", "r") as f:
+        g = f["steps/0001/contact/pair_1"]
+        assert int(g.attrs["roles_swapped"]) == (1 if pair_type == "NODE TO SURFACE" else 0)
+        p = np.array(g["CPRESS"])
+        x = np.array(g["coordinates"])[:, 0]
+    assert abs(p.max() / P0 - 1) <= 0.02, p.max()
+    assert x[np.argmax(p)] < 0.2, x[np.argmax(p)]
+
+
 def hertz_vpe2(exe, d, include, pair_type):
     """inputs/hertz_329_vem2.inp (the paper's Hertz with VPE2 bodies, the disc's side
     nodes on the circle) with HARD and `pair_type`, on the mesh `include`."""

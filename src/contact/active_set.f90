@@ -82,6 +82,15 @@ module vemcontact_contact_active_set
    !> How far (a fraction of its segment) a closed node of a stepwise pair may end a
    !> load state beyond its segment's end before it is paired anew (release_stepwise):
    !> round-off of a node at a vertex, not a slide
+   !> SURFACE TO SURFACE pressures are projected onto the own sides of the master
+   !> instead of the slave when the master's vertices turn by more than this factor
+   !> times the slave's (plus curved_face_floor radians, so that round-off on two
+   !> straight faces changes nothing): the polygon of a curve is the face whose
+   !> corners the projection must smooth (recover_side_pressures)
+   real(wp), parameter :: curved_face_ratio = 2.0_wp
+   !> see contact_state_t%support_shared
+   real(wp), parameter :: support_share_floor = 1.0e-3_wp
+   real(wp), parameter :: curved_face_floor = 1.0e-8_wp
    real(wp), parameter :: stepwise_slack = 1.0e-6_wp
 
    !> One contact pair's geometry.
@@ -146,6 +155,12 @@ module vemcontact_contact_active_set
       !> the slave node along the normal, where the support takes part of the force);
       !> such a force stays at its node when CPRESS is recovered (recover_side_pressures)
       logical, allocatable :: held(:)
+      !> held entries whose fixed dofs take a visible part of the normal force (a normal
+      !> component above support_share_floor along a fixed dof): their force stays at
+      !> their node when CPRESS is recovered.  A node on a symmetry line whose pair
+      !> normal is tilted off it by the faces' curvature (1e-5 on the Hertz decks) is
+      !> held, its multiplier being its force, but shares nothing with the support.
+      logical, allocatable :: support_shared(:)
       integer(ip), allocatable :: iseg(:)      !< chosen segment (index into its pair's seg), 0 if none
       real(wp), allocatable :: xi(:), gap(:), gap0(:), normal(:, :)
       !> finite sliding: c = n.t and w = dxi/du of the pairing (sliding_tangent), for
@@ -425,9 +440,12 @@ contains
    !> are not one curve (a disc on a block) the direction is that of the interface the
    !> two faces become, from both faces' mean normals and compliances (common_normal):
    !> the slave's mean normal is taken over its sides whose both ends are paired (the
-   !> sides that face the master), and only at a node between two such sides: at an end
-   !> of the paired face (a symmetry line, a support, a slave face turning away past the
-   !> master's end) one side's normal is not the face's, and the master's is kept.
+   !> sides that face the master), at a node between two such sides or where both
+   !> faces end (a symmetry line: there each face has one side, and the one-sided
+   !> normal of the softer face, a disc's chord tilted by half its turn, is not the
+   !> interface's); at an end of the paired slave face only (a support, a slave face
+   !> turning away past the master's end) one side's normal is not the face's, and
+   !> the master's is kept.
    subroutine node_partners(model, pair, node, seg, seg_elem, pd, error)
       type(model_t), intent(in) :: model
       type(contact_pair_t), intent(in) :: pair
@@ -479,7 +497,8 @@ contains
          pd%nn_xi(i) = merge(0.0_wp, 1.0_wp, seg(1, seg_at(m)) == m)
          t = vn(:, m)/lsum(m)
          pd%nn_normal(:, i) = t
-         if (nsides(node(i)) == 2) pd%nn_normal(:, i) = common_normal(t, vs(:, node(i)), cm(m), cs(node(i)))
+         if (nsides(node(i)) == 2 .or. (nsides(node(i)) == 1 .and. count(seg == m) == 1)) &
+            pd%nn_normal(:, i) = common_normal(t, vs(:, node(i)), cm(m), cs(node(i)))
       end do
    end subroutine node_partners
 
@@ -1231,7 +1250,9 @@ contains
       end do
       if (.not. allocated(self%balanced)) allocate (self%balanced(self%n))
       if (.not. allocated(self%held)) allocate (self%held(self%n))
+      if (.not. allocated(self%support_shared)) allocate (self%support_shared(self%n))
       self%held = .false.
+      self%support_shared = .false.
       do i = 1, self%n
          self%balanced(i) = self%normal_force(i)
          self%fric%balanced(i) = -self%fric%force(i)
@@ -1243,6 +1264,9 @@ contains
          ! node is N n + T t, with |n| = |t| < 1 at a kink of a SURFACE TO SURFACE master
          self%held(i) = (fixed(2*s - 1) .and. abs(self%normal(1, i)) > 0.0_wp) .or. &
                         (fixed(2*s) .and. abs(self%normal(2, i)) > 0.0_wp)
+         self%support_shared(i) = &
+            (fixed(2*s - 1) .and. abs(self%normal(1, i)) > support_share_floor*norm2(self%normal(:, i))) .or. &
+            (fixed(2*s) .and. abs(self%normal(2, i)) > support_share_floor*norm2(self%normal(:, i)))
          if (.not. self%held(i)) &
             self%balanced(i) = dot_product(self%normal(:, i), r(2*s - 1:2*s))/ &
                                dot_product(self%normal(:, i), self%normal(:, i))
@@ -1592,9 +1616,9 @@ contains
       type(model_t), intent(in) :: model
       type(contact_table_t), intent(inout) :: tab
       type(error_t), allocatable :: err
-      integer(ip), allocatable :: edge(:, :), edge_elem(:)
-      integer, allocatable :: edge_side(:)
-      logical, allocatable :: new(:), keep(:)
+      integer(ip), allocatable :: edge(:, :), edge_elem(:), chain(:, :), mchain(:, :), melem(:), on(:)
+      integer, allocatable :: edge_side(:), mside(:)
+      logical, allocatable :: new(:), keep(:), closed(:)
       integer(ip) :: n0
       integer :: p, lo, hi
       if (size(self%inserted) /= size(self%pairs)) return
@@ -1611,14 +1635,72 @@ contains
          lo = self%pairs(p)%first + 1
          hi = self%pairs(p)%first + self%pairs(p)%nslave
          allocate (keep(hi - lo + 1), source=.false.)
-         if (allocated(self%held)) keep = self%held(lo:hi)
-         tab%cpress(lo:hi) = side_pressure(model%x, face_chain(model, edge_elem, edge_side), new, self%node(lo:hi), &
-                                           tab%cpress(lo:hi)*tab%cnarea(lo:hi), tab%cnarea(lo:hi), &
-                                           tab%status(lo:hi) /= 0 .and. tab%status(lo:hi) /= 2, keep)
+         if (allocated(self%support_shared)) keep = self%support_shared(lo:hi)
+         closed = tab%status(lo:hi) /= 0 .and. tab%status(lo:hi) /= 2
+         ! the projection onto the own sides of the face that is the polygon of a curve:
+         ! the master's, through each entry's partner, when its vertices turn more
+         chain = face_chain(model, edge_elem, edge_side)
+         on = self%node(lo:hi)
+         call master_segments(model, model%pairs(p), mchain, melem, mside, err)
+         if (.not. allocated(err)) then
+            if (mean_turn(model%x, mchain, new, partners(model%pairs(p), on), closed) > &
+                curved_face_ratio*mean_turn(model%x, chain, new, on, closed) + curved_face_floor) then
+               chain = mchain
+               on = partners(model%pairs(p), on)
+            end if
+         end if
+         tab%cpress(lo:hi) = side_pressure(model%x, chain, new, on, tab%cpress(lo:hi)*tab%cnarea(lo:hi), &
+                                           tab%cnarea(lo:hi), closed, keep)
          deallocate (keep)
          deallocate (new)
       end do
    end subroutine recover_side_pressures
+
+   !> The partner (master node) of each slave node of a SURFACE TO SURFACE pair, the
+   !> slave node itself where it has none (it is then on no master side).
+   pure function partners(pair, node) result(m)
+      type(contact_pair_t), intent(in) :: pair
+      integer(ip), intent(in) :: node(:)
+      integer(ip) :: m(size(node))
+      integer(ip), allocatable :: of(:)
+      integer :: j
+      m = node
+      if (.not. allocated(pair%partner)) return
+      if (size(pair%partner, 2) == 0) return
+      allocate (of(max(maxval(pair%partner(1, :)), maxval(node))), source=0_ip)
+      of(pair%partner(1, :)) = pair%partner(2, :)
+      do j = 1, size(node)
+         if (of(node(j)) > 0) m(j) = of(node(j))
+      end do
+   end function partners
+
+   !> Mean turning angle (radians) of a face chain at its own nodes (not `new`) among
+   !> the closed entries' nodes `node`: 0 on a straight face, the polygon's turn per
+   !> vertex on a curve meshed by straight sides.
+   pure real(wp) function mean_turn(x, chain, new, node, closed) result(turn)
+      real(wp), intent(in) :: x(:, :)
+      integer(ip), intent(in) :: chain(:, :), node(:)
+      logical, intent(in) :: new(:), closed(:)
+      integer(ip), allocatable :: next(:), prev(:)
+      real(wp) :: d1(2), d2(2)
+      integer :: j, k, n
+      allocate (next(size(x, 2)), prev(size(x, 2)), source=0_ip)
+      do k = 1, size(chain, 2)
+         next(chain(1, k)) = chain(2, k)
+         prev(chain(2, k)) = chain(1, k)
+      end do
+      turn = 0.0_wp
+      n = 0
+      do j = 1, size(node)
+         if (.not. closed(j) .or. new(node(j))) cycle
+         if (next(node(j)) == 0 .or. prev(node(j)) == 0) cycle
+         d1 = x(:, node(j)) - x(:, prev(node(j)))
+         d2 = x(:, next(node(j))) - x(:, node(j))
+         turn = turn + abs(atan2(d1(1)*d2(2) - d1(2)*d2(1), dot_product(d1, d2)))
+         n = n + 1
+      end do
+      if (n > 0) turn = turn/n
+   end function mean_turn
 
    !> The slave face as a chain of straight pieces (a, b): a first-order side as it
    !> is, a second-order side (a, m, b) as a -> m and m -> b, so that its side node
