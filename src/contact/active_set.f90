@@ -665,230 +665,272 @@ contains
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: u(:)
       type(error_t), allocatable, intent(out) :: error
+      integer :: p, i, lo, hi
+      do p = 1, size(self%pairs)
+         if (self%pairs(p)%nslave == 0) cycle
+         lo = self%pairs(p)%first + 1
+         hi = self%pairs(p)%first + self%pairs(p)%nslave
+         if (self%pairs(p)%node_to_node .and. .not. self%pairs(p)%paired) then
+            call pair_node_to_node(self, model, u, p, lo, hi)
+            cycle
+         end if
+         if ((self%pairs(p)%small_sliding .or. self%pairs(p)%stepwise) .and. self%pairs(p)%paired) then
+            ! the pairing stays that of the undeformed state (or of the load state's
+            ! start): only the gaps move, linearly in u, so the frozen stiffness is exact
+            do i = lo, hi
+               if (self%iseg(i) /= 0) self%gap(i) = frozen_gap(self, i, u)
+            end do
+            cycle
+         end if
+         call search_pair(self, model, u, p, lo, hi, error)
+         if (allocated(error)) return
+      end do
+   end subroutine project
+
+   !> Pair the slave entries lo..hi of pair p anew at u: the closest segments, kept
+   !> within the hysteresis, then (finite sliding) the point along the reference normal,
+   !> with the reference normal, the gap, the sliding terms and the stick anchor.
+   subroutine search_pair(self, model, u, p, lo, hi, error)
+      type(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer, intent(in) :: p, lo, hi
+      type(error_t), allocatable, intent(out) :: error
       type(segment_grid_t) :: grid
       real(wp), allocatable :: xl(:, :)
       integer(ip), allocatable :: prev(:)
-      integer :: p, i, lo, hi
+      integer :: i
       integer(ip) :: a, b
       real(wp) :: radius
-      do p = 1, size(self%pairs)
-         associate (pd => self%pairs(p))
-            if (pd%nslave == 0) cycle
-            lo = pd%first + 1
-            hi = pd%first + pd%nslave
-            if (pd%node_to_node .and. .not. pd%paired) then
-               call pair_node_to_node(p, lo, hi)
-               cycle
-            end if
-            if ((pd%small_sliding .or. pd%stepwise) .and. pd%paired) then
-               ! the pairing stays that of the undeformed state: only the gaps move,
-               ! linearly in u, so the frozen stiffness is exact
-               do i = lo, hi
-                  if (self%iseg(i) /= 0) self%gap(i) = frozen_gap(self, i, u)
-               end do
-               cycle
-            end if
-            radius = search_radius(pd, u)
-            xl = local_coordinates(pd, model, u)
-            call build_segment_grid(xl, pd%lseg, radius, grid, error)
-            if (allocated(error)) return
-            prev = self%iseg(lo:hi)
-            call closest_segments(grid, xl, pd%lseg, pd%lslave, radius, self%iseg(lo:hi), &
-                                  self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
-            do i = lo, hi
-               if (pd%stepwise) call shift_arc(i, self%slide_base(i))
-               call keep_previous(i, prev(i - lo + 1))
-               if (self%iseg(i) == 0) cycle
-               if (.not. pd%small_sliding) call ray_pair(i, pd%seg, grid)
-               a = pd%seg(1, self%iseg(i))
-               b = pd%seg(2, self%iseg(i))
-               ! the reference segment's normal (a segment of zero length in the mesh
-               ! keeps the current one: the search found it a direction)
-               if (.not. segment_is_degenerate(model%x(:, a), model%x(:, b))) &
-                  self%normal(:, i) = segment_normal(model%x(:, a), model%x(:, b))
-               call reference_gap(i, a, b)
+      associate (pd => self%pairs(p))
+         radius = search_radius(pd, u)
+         xl = local_coordinates(pd, model, u)
+         call build_segment_grid(xl, pd%lseg, radius, grid, error)
+         if (allocated(error)) return
+         prev = self%iseg(lo:hi)
+         call closest_segments(grid, xl, pd%lseg, pd%lslave, radius, self%iseg(lo:hi), &
+                               self%xi(lo:hi), self%gap(lo:hi), self%normal(:, lo:hi), prev)
+         do i = lo, hi
+            if (pd%stepwise) call shift_arc(self, i, self%slide_base(i))
+            call keep_previous(self, model, u, i, prev(i - lo + 1), radius)
+            if (self%iseg(i) == 0) cycle
+            if (.not. pd%small_sliding) call ray_pair(self, model, u, i, pd%seg, grid)
+            a = pd%seg(1, self%iseg(i))
+            b = pd%seg(2, self%iseg(i))
+            ! the reference segment's normal (a segment of zero length in the mesh
+            ! keeps the current one: the search found it a direction)
+            if (.not. segment_is_degenerate(model%x(:, a), model%x(:, b))) &
+               self%normal(:, i) = segment_normal(model%x(:, a), model%x(:, b))
+            call reference_gap(self, model, u, i, a, b)
+            self%slide_c(i) = 0.0_wp
+            self%slide_w(:, i) = 0.0_wp
+            self%slide_s0(i) = 0.0_wp
+            if (.not. pd%small_sliding) call sliding_terms(self, model, u, i, a, b)
+            if (.not. pd%small_sliding) call carry_anchor(self, u, i, prev(i - lo + 1))
+            if (pd%stepwise) then
+               ! the pairing is kept through the load state: no sliding part in the
+               ! tangent; the slip and anchor counted from the arc length s0
                self%slide_c(i) = 0.0_wp
                self%slide_w(:, i) = 0.0_wp
+               call shift_arc(self, i, -self%slide_s0(i))
                self%slide_s0(i) = 0.0_wp
-               if (.not. pd%small_sliding) call sliding_terms(i, a, b)
-               if (.not. pd%small_sliding) call carry_anchor(i, prev(i - lo + 1))
-               if (pd%stepwise) then
-                  ! the pairing is kept through the load state: no sliding part in the
-                  ! tangent; the slip and anchor counted from the arc length s0
-                  self%slide_c(i) = 0.0_wp
-                  self%slide_w(:, i) = 0.0_wp
-                     call shift_arc(i, -self%slide_s0(i))
-                  self%slide_s0(i) = 0.0_wp
-               end if
-            end do
-            pd%paired = .true.
-         end associate
-      end do
-   contains
-      !> Entry i's slip and anchor counted from ds further back along the master
-      !> (slide_base less ds).
-      subroutine shift_arc(i, ds)
-         integer, intent(in) :: i
-         real(wp), intent(in) :: ds
-         self%fric%slip(i) = self%fric%slip(i) + ds
-         self%fric%anchor(i) = self%fric%anchor(i) + ds
-         if (ds < 0.0_wp .or. ds > 0.0_wp) self%slide_base(i) = self%slide_base(i) - ds
-      end subroutine shift_arc
-      !> The fixed pairing of a SURFACE TO SURFACE pair (node_partners) and its gaps.
-      subroutine pair_node_to_node(p, lo, hi)
-         integer, intent(in) :: p, lo, hi
-         integer :: i
-         do i = lo, hi
-            self%iseg(i) = self%pairs(p)%nn_seg(i - lo + 1)
-            if (self%iseg(i) == 0) cycle
-            self%xi(i) = self%pairs(p)%nn_xi(i - lo + 1)
-            self%normal(:, i) = self%pairs(p)%nn_normal(:, i - lo + 1)
-            call reference_gap(i, self%pairs(p)%seg(1, self%iseg(i)), self%pairs(p)%seg(2, self%iseg(i)))
-         end do
-         self%pairs(p)%paired = .true.
-      end subroutine pair_node_to_node
-
-      !> g0 = n.(X_s - X_xi) of entry i on segment a -> b, and its gap at u.
-      subroutine reference_gap(i, a, b)
-         integer, intent(in) :: i
-         integer(ip), intent(in) :: a, b
-         ! reference gap with this pairing frozen: g = g0 + n.A u.  The gap is
-         ! evaluated in this form (from displacement differences) rather than from
-         ! the current coordinates: an overclosure of 1e-10 of the coordinates
-         ! would otherwise lose most of its digits to cancellation
-         self%gap0(i) = dot_product(self%normal(:, i), model%x(:, self%node(i)) - &
-                                    ((1.0_wp - self%xi(i))*model%x(:, a) + self%xi(i)*model%x(:, b)))
-         if (abs(self%gap0(i)) <= gap0_roundoff*epsilon(1.0_wp)* &
-             max(maxval(abs(model%x(:, self%node(i)))), maxval(abs(model%x(:, a))), &
-                 maxval(abs(model%x(:, b))))) self%gap0(i) = 0.0_wp
-         self%gap(i) = frozen_gap(self, i, u)
-      end subroutine reference_gap
-
-      !> c = n.(u_b - u_a) and w = dxi/du of entry i on the segment a -> b at u, for
-      !> the sliding part of the tangent (sliding_tangent, tangent_times); the
-      !> reference segment is normal to n, so that c = n.t of the current one.  And
-      !> the slip's terms: s0 = S_a + t.(X_s - X_a) with S_a the reference arc length
-      !> at a, so that s = s0 + t.A(xi) u = S(xi) + t.(x_s - x_xi) is the arc length of
-      !> the projection (the current x_s - x_xi is normal to the current segment: its
-      !> t component is the gap times the segment's rotation), continuous across
-      !> segment changes.
-      subroutine sliding_terms(i, a, b)
-         integer, intent(in) :: i
-         integer(ip), intent(in) :: a, b
-         real(wp) :: t(2)
-         self%slide_c(i) = dot_product(self%normal(:, i), u(2*b - 1:2*b) - u(2*a - 1:2*a))
-         if (segment_is_degenerate(model%x(:, a), model%x(:, b))) then
-            self%slide_w(:, i) = projection_gradient(self%xi(i), current(self%node(i)), current(a), current(b))
-         else
-            self%slide_w(:, i) = ray_gradient(self%xi(i), current(a), current(b), model%x(:, b) - model%x(:, a))
-         end if
-         t = tangent_of(self%normal(:, i))
-         self%slide_s0(i) = self%pairs(self%pair(i))%arc(self%iseg(i)) + &
-                            dot_product(t, model%x(:, self%node(i)) - model%x(:, a))
-      end subroutine sliding_terms
-
-      !> The stick anchor of a frictional entry under finite sliding, a position on
-      !> the master's arc length: an entry paired anew (none before) anchors where it
-      !> is; on a closed loop the anchor follows the slip round the wrap of the arc
-      !> length (the nearest of its copies a loop length apart).
-      subroutine carry_anchor(i, iprev)
-         integer, intent(in) :: i
-         integer(ip), intent(in) :: iprev
-         real(wp) :: sl, period
-         if (.not. self%fric%on) return
-         if (.not. self%fric%frictional_pair(self%pair(i))) return
-         sl = entry_slip(self, i, u)
-         if (iprev == 0) self%fric%anchor(i) = sl
-         period = self%pairs(self%pair(i))%period(self%iseg(i))
-         if (period > 0.0_wp) self%fric%anchor(i) = self%fric%anchor(i) + period*anint((sl - self%fric%anchor(i))/period)
-      end subroutine carry_anchor
-
-      !> Finite sliding: entry i moves to the point of the master surface on the line
-      !> through its slave node along the reference normal (ray_projection), walking
-      !> from the closest segment to its neighbours while that point lies beyond the
-      !> segment's ends.  Where the lines of two neighbours leave a wedge between them
-      !> (a vertex where the reference normals turn away from the slave) the node keeps
-      !> the segment it overshoots less.  A segment of zero length in the mesh keeps
-      !> the closest point.
-      subroutine ray_pair(i, seg, grid)
-         integer, intent(in) :: i
-         integer(ip), intent(in) :: seg(:, :)
-         type(segment_grid_t), intent(in) :: grid
-         integer(ip) :: j, nb, from
-         real(wp) :: xi, xin
-         logical :: ok, take
-         integer :: step
-         j = self%iseg(i)
-         call ray_xi(i, seg(:, j), xi, ok)
-         if (.not. ok) return
-         from = 0
-         do step = 1, ray_walk_limit
-            nb = 0
-            if (xi < 0.0_wp) nb = grid%prev(j)
-            if (xi > 1.0_wp) nb = grid%next(j)
-            if (nb == 0 .or. nb == from) exit
-            call ray_xi(i, seg(:, nb), xin, ok)
-            if (.not. ok) exit
-            take = .true.
-            ! the wedge: the neighbour's point is back beyond the vertex they share
-            if (xi < 0.0_wp .and. xin > 1.0_wp) &
-               take = (xin - 1.0_wp)*seg_length(seg(:, nb)) < -xi*seg_length(seg(:, j))
-            if (xi > 1.0_wp .and. xin < 0.0_wp) &
-               take = -xin*seg_length(seg(:, nb)) < (xi - 1.0_wp)*seg_length(seg(:, j))
-            if (take) then
-               from = j
-               j = nb
-               xi = xin
             end if
-            if (.not. take .or. (xin >= 0.0_wp .and. xin <= 1.0_wp)) exit
          end do
-         self%iseg(i) = j
-         self%xi(i) = xi
-      end subroutine ray_pair
+         pd%paired = .true.
+      end associate
+   end subroutine search_pair
 
-      !> ray_projection of entry i's slave node on the segment sg (ok = .false. for a
-      !> segment of zero length in the mesh or turned by a right angle).
-      subroutine ray_xi(i, sg, xi, ok)
-         integer, intent(in) :: i
-         integer(ip), intent(in) :: sg(2)
-         real(wp), intent(out) :: xi
-         logical, intent(out) :: ok
-         xi = 0.0_wp
-         ok = .not. segment_is_degenerate(model%x(:, sg(1)), model%x(:, sg(2)))
-         if (ok) call ray_projection(current(self%node(i)), current(sg(1)), current(sg(2)), &
-                                     model%x(:, sg(2)) - model%x(:, sg(1)), xi, ok)
-      end subroutine ray_xi
+   !> Entry i's slip and anchor counted from ds further back along the master
+   !> (slide_base less ds).
+   pure subroutine shift_arc(self, i, ds)
+      type(contact_state_t), intent(inout) :: self
+      integer, intent(in) :: i
+      real(wp), intent(in) :: ds
+      self%fric%slip(i) = self%fric%slip(i) + ds
+      self%fric%anchor(i) = self%fric%anchor(i) + ds
+      if (ds < 0.0_wp .or. ds > 0.0_wp) self%slide_base(i) = self%slide_base(i) - ds
+   end subroutine shift_arc
 
-      !> current length of the segment sg
-      real(wp) function seg_length(sg) result(l)
-         integer(ip), intent(in) :: sg(2)
-         l = length2(current(sg(2)) - current(sg(1)))
-      end function seg_length
+   !> The fixed pairing of a SURFACE TO SURFACE pair (node_partners) and its gaps.
+   subroutine pair_node_to_node(self, model, u, p, lo, hi)
+      type(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer, intent(in) :: p, lo, hi
+      integer :: i
+      do i = lo, hi
+         self%iseg(i) = self%pairs(p)%nn_seg(i - lo + 1)
+         if (self%iseg(i) == 0) cycle
+         self%xi(i) = self%pairs(p)%nn_xi(i - lo + 1)
+         self%normal(:, i) = self%pairs(p)%nn_normal(:, i - lo + 1)
+         call reference_gap(self, model, u, i, self%pairs(p)%seg(1, self%iseg(i)), self%pairs(p)%seg(2, self%iseg(i)))
+      end do
+      self%pairs(p)%paired = .true.
+   end subroutine pair_node_to_node
 
-      subroutine keep_previous(i, iprev)
-         integer, intent(in) :: i
-         integer(ip), intent(in) :: iprev
-         real(wp) :: xi, gap, normal(2), dist
-         integer :: status
-         if (iprev == 0 .or. iprev == self%iseg(i)) return
-         associate (sg => self%pairs(self%pair(i))%seg(:, iprev))
-            call project_point_segment(current(self%node(i)), current(sg(1)), current(sg(2)), &
-                                       xi, gap, normal, dist, status)
-         end associate
-         if (status /= seg_ok) return
-         if (xi < -pairing_hysteresis .or. xi > 1.0_wp + pairing_hysteresis) return
-         if (dist > radius) return          ! no longer a candidate: the pattern may not hold it
-         self%iseg(i) = iprev
-         self%xi(i) = xi
-      end subroutine keep_previous
+   !> g0 = n.(X_s - X_xi) of entry i on segment a -> b, and its gap at u.
+   subroutine reference_gap(self, model, u, i, a, b)
+      type(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer, intent(in) :: i
+      integer(ip), intent(in) :: a, b
+      ! reference gap with this pairing frozen: g = g0 + n.A u.  The gap is
+      ! evaluated in this form (from displacement differences) rather than from
+      ! the current coordinates: an overclosure of 1e-10 of the coordinates
+      ! would otherwise lose most of its digits to cancellation
+      self%gap0(i) = dot_product(self%normal(:, i), model%x(:, self%node(i)) - &
+                                 ((1.0_wp - self%xi(i))*model%x(:, a) + self%xi(i)*model%x(:, b)))
+      if (abs(self%gap0(i)) <= gap0_roundoff*epsilon(1.0_wp)* &
+          max(maxval(abs(model%x(:, self%node(i)))), maxval(abs(model%x(:, a))), &
+              maxval(abs(model%x(:, b))))) self%gap0(i) = 0.0_wp
+      self%gap(i) = frozen_gap(self, i, u)
+   end subroutine reference_gap
 
-      !> x + u of model node j
-      pure function current(j) result(xj)
-         integer(ip), intent(in) :: j
-         real(wp) :: xj(2)
-         xj = model%x(:, j) + u(2*j - 1:2*j)
-      end function current
-   end subroutine project
+   !> c = n.(u_b - u_a) and w = dxi/du of entry i on the segment a -> b at u, for
+   !> the sliding part of the tangent (sliding_tangent, tangent_times); the
+   !> reference segment is normal to n, so that c = n.t of the current one.  And
+   !> the slip's terms: s0 = S_a + t.(X_s - X_a) with S_a the reference arc length
+   !> at a, so that s = s0 + t.A(xi) u = S(xi) + t.(x_s - x_xi) is the arc length of
+   !> the projection (the current x_s - x_xi is normal to the current segment: its
+   !> t component is the gap times the segment's rotation), continuous across
+   !> segment changes.
+   subroutine sliding_terms(self, model, u, i, a, b)
+      type(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer, intent(in) :: i
+      integer(ip), intent(in) :: a, b
+      real(wp) :: t(2)
+      self%slide_c(i) = dot_product(self%normal(:, i), u(2*b - 1:2*b) - u(2*a - 1:2*a))
+      if (segment_is_degenerate(model%x(:, a), model%x(:, b))) then
+         self%slide_w(:, i) = projection_gradient(self%xi(i), current_x(model, u, self%node(i)), &
+                                                  current_x(model, u, a), current_x(model, u, b))
+      else
+         self%slide_w(:, i) = ray_gradient(self%xi(i), current_x(model, u, a), current_x(model, u, b), &
+                                           model%x(:, b) - model%x(:, a))
+      end if
+      t = tangent_of(self%normal(:, i))
+      self%slide_s0(i) = self%pairs(self%pair(i))%arc(self%iseg(i)) + &
+                         dot_product(t, model%x(:, self%node(i)) - model%x(:, a))
+   end subroutine sliding_terms
+
+   !> The stick anchor of a frictional entry under finite sliding, a position on
+   !> the master's arc length: an entry paired anew (none before) anchors where it
+   !> is; on a closed loop the anchor follows the slip round the wrap of the arc
+   !> length (the nearest of its copies a loop length apart).
+   subroutine carry_anchor(self, u, i, iprev)
+      type(contact_state_t), intent(inout) :: self
+      real(wp), intent(in) :: u(:)
+      integer, intent(in) :: i
+      integer(ip), intent(in) :: iprev
+      real(wp) :: sl, period
+      if (.not. self%fric%on) return
+      if (.not. self%fric%frictional_pair(self%pair(i))) return
+      sl = entry_slip(self, i, u)
+      if (iprev == 0) self%fric%anchor(i) = sl
+      period = self%pairs(self%pair(i))%period(self%iseg(i))
+      if (period > 0.0_wp) self%fric%anchor(i) = self%fric%anchor(i) + period*anint((sl - self%fric%anchor(i))/period)
+   end subroutine carry_anchor
+
+   !> Finite sliding: entry i moves to the point of the master surface on the line
+   !> through its slave node along the reference normal (ray_projection), walking
+   !> from the closest segment to its neighbours while that point lies beyond the
+   !> segment's ends.  Where the lines of two neighbours leave a wedge between them
+   !> (a vertex where the reference normals turn away from the slave) the node keeps
+   !> the segment it overshoots less.  A segment of zero length in the mesh keeps
+   !> the closest point.
+   subroutine ray_pair(self, model, u, i, seg, grid)
+      type(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer, intent(in) :: i
+      integer(ip), intent(in) :: seg(:, :)
+      type(segment_grid_t), intent(in) :: grid
+      integer(ip) :: j, nb, from
+      real(wp) :: xi, xin
+      logical :: ok, take
+      integer :: step
+      j = self%iseg(i)
+      call ray_xi(model, u, self%node(i), seg(:, j), xi, ok)
+      if (.not. ok) return
+      from = 0
+      do step = 1, ray_walk_limit
+         nb = 0
+         if (xi < 0.0_wp) nb = grid%prev(j)
+         if (xi > 1.0_wp) nb = grid%next(j)
+         if (nb == 0 .or. nb == from) exit
+         call ray_xi(model, u, self%node(i), seg(:, nb), xin, ok)
+         if (.not. ok) exit
+         take = .true.
+         ! the wedge: the neighbour's point is back beyond the vertex they share
+         if (xi < 0.0_wp .and. xin > 1.0_wp) &
+            take = (xin - 1.0_wp)*seg_length(model, u, seg(:, nb)) < -xi*seg_length(model, u, seg(:, j))
+         if (xi > 1.0_wp .and. xin < 0.0_wp) &
+            take = -xin*seg_length(model, u, seg(:, nb)) < (xi - 1.0_wp)*seg_length(model, u, seg(:, j))
+         if (take) then
+            from = j
+            j = nb
+            xi = xin
+         end if
+         if (.not. take .or. (xin >= 0.0_wp .and. xin <= 1.0_wp)) exit
+      end do
+      self%iseg(i) = j
+      self%xi(i) = xi
+   end subroutine ray_pair
+
+   !> ray_projection of slave node s on the segment sg (ok = .false. for a segment of
+   !> zero length in the mesh or turned by a right angle).
+   pure subroutine ray_xi(model, u, s, sg, xi, ok)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer(ip), intent(in) :: s, sg(2)
+      real(wp), intent(out) :: xi
+      logical, intent(out) :: ok
+      xi = 0.0_wp
+      ok = .not. segment_is_degenerate(model%x(:, sg(1)), model%x(:, sg(2)))
+      if (ok) call ray_projection(current_x(model, u, s), current_x(model, u, sg(1)), current_x(model, u, sg(2)), &
+                                  model%x(:, sg(2)) - model%x(:, sg(1)), xi, ok)
+   end subroutine ray_xi
+
+   !> current length of the segment sg
+   pure real(wp) function seg_length(model, u, sg) result(l)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer(ip), intent(in) :: sg(2)
+      l = length2(current_x(model, u, sg(2)) - current_x(model, u, sg(1)))
+   end function seg_length
+
+   !> Entry i goes back to its previous segment iprev while its projection stays
+   !> within pairing_hysteresis of it and within the search radius.
+   subroutine keep_previous(self, model, u, i, iprev, radius)
+      type(contact_state_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:), radius
+      integer, intent(in) :: i
+      integer(ip), intent(in) :: iprev
+      real(wp) :: xi, gap, normal(2), dist
+      integer :: status
+      if (iprev == 0 .or. iprev == self%iseg(i)) return
+      associate (sg => self%pairs(self%pair(i))%seg(:, iprev))
+         call project_point_segment(current_x(model, u, self%node(i)), current_x(model, u, sg(1)), &
+                                    current_x(model, u, sg(2)), xi, gap, normal, dist, status)
+      end associate
+      if (status /= seg_ok) return
+      if (xi < -pairing_hysteresis .or. xi > 1.0_wp + pairing_hysteresis) return
+      if (dist > radius) return          ! no longer a candidate: the pattern may not hold it
+      self%iseg(i) = iprev
+      self%xi(i) = xi
+   end subroutine keep_previous
+
+   !> x + u of model node j
+   pure function current_x(model, u, j) result(xj)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:)
+      integer(ip), intent(in) :: j
+      real(wp) :: xj(2)
+      xj = model%x(:, j) + u(2*j - 1:2*j)
+   end function current_x
 
    !> New active set from the current gaps; returns how many entries changed.
    !> Entries of `hold` that are active stay active whatever their gap; they are
