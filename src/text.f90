@@ -1,11 +1,17 @@
 !> Text shown to the user: control characters of deck text (terminal escape
 !> sequences, stray bytes) are shown escaped so that they neither act on the
-!> terminal nor hide in the log.
+!> terminal nor hide in the log; integers as the shortest decimal text.
 module vemcontact_text
+   use vemcontact_kinds, only: i8
    implicit none
    private
 
-   public :: escape_controls, cap_lines
+   public :: escape_controls, cap_lines, int_text
+
+   !> An integer (default or 64-bit) as its decimal digits, without blanks.
+   interface int_text
+      module procedure int_text_default, int_text_i8
+   end interface int_text
 
    !> Longest line of a message shown to the user: deck text quoted in a message
    !> (a parameter value, a name) is cut there, so that no input makes a message
@@ -79,4 +85,19 @@ contains
       integer, intent(in) :: c
       is_shown_escaped = (c < 32 .and. c /= 10 .and. c /= 9) .or. c == 127
    end function is_shown_escaped
+   pure function int_text_default(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=12) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function int_text_default
+
+   pure function int_text_i8(i) result(s)
+      integer(i8), intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=21) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function int_text_i8
 end module vemcontact_text

@@ -28,6 +28,7 @@ module vemcontact_contact_insertion
                                dload_hydrostatic, pair_surface_to_surface, element_order, element_side
    use vemcontact_model, only: contact_pair_t
    use vemcontact_contact_surfaces, only: master_segments, slave_edges
+   use vemcontact_text, only: int_text
    use vemcontact_contact_search, only: segment_grid_t, build_segment_grid, closest_segments, end_tol
    use vemcontact_contact_geometry, only: length2
    implicit none
@@ -383,8 +384,8 @@ contains
       do k = 2, size(elems)
          if (element_order(model%elem_type(elems(k))) == order) cycle
          call fatal_error(error, 'error: the surfaces of this TYPE=SURFACE TO SURFACE pair have first- and '// &
-                          'second-order sides (elements '//itoa(model%elem_id(elems(1)))//' and '// &
-                          itoa(model%elem_id(elems(k)))//', the second defined at '// &
+                          'second-order sides (elements '//int_text(model%elem_id(elems(1)))//' and '// &
+                          int_text(model%elem_id(elems(k)))//', the second defined at '// &
                           location_string(model, model%elem_loc(elems(k)))//')'//new_line('a')// &
                           '  = help: mesh both bodies along the interface with the same order (VPE/VPS or '// &
                           'VPE2/VPS2), or use TYPE=NODE TO SURFACE', err_input)
@@ -645,11 +646,11 @@ contains
          seen(elems(k)) = .true.
          nbad = nbad + 1
          if (nbad == 1) first = location_string(model, model%elem_loc(elems(k)))
-         if (nbad <= max_listed) list = list//', '//itoa(model%elem_id(elems(k)))
+         if (nbad <= max_listed) list = list//', '//int_text(model%elem_id(elems(k)))
       end do
       if (nbad == 0) return
-      if (nbad > max_listed) list = list//' and '//itoa(int(nbad - max_listed, ip))//' more'
-      call fatal_error(error, 'error: '//itoa(int(nbad, ip))//' FEM elements have sides on the surfaces of '// &
+      if (nbad > max_listed) list = list//' and '//int_text(int(nbad - max_listed, ip))//' more'
+      call fatal_error(error, 'error: '//int_text(int(nbad, ip))//' FEM elements have sides on the surfaces of '// &
                        'this TYPE=SURFACE TO SURFACE pair (the first defined at '//first//'): '//list(3:)// &
                        new_line('a')//'  = help: this contact inserts nodes into the sides of both surfaces, '// &
                        'which only virtual elements take: use polygon elements (VPE/VPS) or FORMULATION=VEM '// &
@@ -686,9 +687,9 @@ contains
          do k = 1, size(ins)
             if (ins(k)%mid > 0) then
                if (any(held(:, ins(k)%mid))) then
-                  call fatal_error(error, 'error: a node would be inserted into side '//itoa(int(ins(k)%side, ip))// &
-                                   ' of element '//itoa(model%elem_id(ins(k)%elem))//', whose side node '// &
-                                   itoa(model%node_id(ins(k)%mid))//' carries a *BOUNDARY condition: the side '// &
+                  call fatal_error(error, 'error: a node would be inserted into side '//int_text(int(ins(k)%side, ip))// &
+                                   ' of element '//int_text(model%elem_id(ins(k)%elem))//', whose side node '// &
+                                   int_text(model%node_id(ins(k)%mid))//' carries a *BOUNDARY condition: the side '// &
                                    'is split into sides with new side nodes'//new_line('a')// &
                                    '  = help: hold the body through other nodes, or use TYPE=NODE TO SURFACE', &
                                    err_input)
@@ -697,9 +698,9 @@ contains
             end if
             if (any(held(:, ins(k)%ends(1)) .and. held(:, ins(k)%ends(2)))) then
                call fatal_error(error, 'error: a node would be inserted between nodes '// &
-                                itoa(model%node_id(ins(k)%ends(1)))//' and '//itoa(model%node_id(ins(k)%ends(2)))// &
-                                ' (side '//itoa(int(ins(k)%side, ip))//' of element '// &
-                                itoa(model%elem_id(ins(k)%elem))//'), which both carry a *BOUNDARY condition on '// &
+                                int_text(model%node_id(ins(k)%ends(1)))//' and '//int_text(model%node_id(ins(k)%ends(2)))// &
+                                ' (side '//int_text(int(ins(k)%side, ip))//' of element '// &
+                                int_text(model%elem_id(ins(k)%elem))//'), which both carry a *BOUNDARY condition on '// &
                                 'the same dof: the inserted node would be free'//new_line('a')// &
                                 '  = help: hold the side through other nodes, or use TYPE=NODE TO SURFACE', err_input)
                return
@@ -1164,11 +1165,4 @@ contains
       u = reshape(pack(pairs, spread(keep, 1, 2)), [2, count(keep)])
    end function unique_pairs
 
-   pure function itoa(i) result(s)
-      integer(ip), intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 end module vemcontact_contact_insertion

@@ -19,6 +19,7 @@ module vemcontact_contact_surfaces
    use vemcontact_model, only: model_t, contact_pair_t, surface_t, location_string, &
                                surface_element, surface_node, element_side, element_order
    use vemcontact_contact_geometry, only: segment_is_degenerate, length2
+   use vemcontact_text, only: int_text
    implicit none
    private
 
@@ -85,18 +86,18 @@ contains
             if (other /= 0) then
                nbad = nbad + 1
                if (nbad <= max_listed) call append_message(error, where//': element '// &
-                  itoa(model%elem_id(e))//' side '//itoa(surf%side(k))//' is shared with element '// &
-                  itoa(model%elem_id(other))//', not on the mesh boundary: a master surface must be '// &
+                  int_text(model%elem_id(e))//' side '//int_text(surf%side(k))//' is shared with element '// &
+                  int_text(model%elem_id(other))//', not on the mesh boundary: a master surface must be '// &
                   'an outer boundary', err_input)
             else if (segment_is_degenerate(model%x(:, abc(1)), model%x(:, abc(2)))) then
                nbad = nbad + 1
                if (nbad <= max_listed) call append_message(error, where//': element '// &
-                  itoa(model%elem_id(e))//' side '//itoa(surf%side(k))//' has zero length (nodes '// &
-                  itoa(node_user(model, abc(1)))//' and '//itoa(node_user(model, abc(2)))// &
+                  int_text(model%elem_id(e))//' side '//int_text(surf%side(k))//' has zero length (nodes '// &
+                  int_text(node_user(model, abc(1)))//' and '//int_text(node_user(model, abc(2)))// &
                   ' coincide)', err_input)
             end if
          end do
-         if (nbad > max_listed) call append_message(error, '... and '//itoa(nbad - max_listed)//' more')
+         if (nbad > max_listed) call append_message(error, '... and '//int_text(nbad - max_listed)//' more')
       end associate
    end subroutine master_segments
 
@@ -228,14 +229,14 @@ contains
             else if (.not. (lsum(i) > 0.0_wp)) then
                nbad = nbad + 1
                if (nbad <= max_listed) call append_message(error, where//': slave node '// &
-                  itoa(node_user(model, i))//' has no tributary length (no mesh boundary edge to '// &
+                  int_text(node_user(model, i))//' has no tributary length (no mesh boundary edge to '// &
                   'another node of the surface, or only zero-length facets): it would get no contact spring', &
                   err_input)
             else
                m = m + 1
             end if
          end do
-         if (nbad > max_listed) call append_message(error, '... and '//itoa(nbad - max_listed)//' more')
+         if (nbad > max_listed) call append_message(error, '... and '//int_text(nbad - max_listed)//' more')
          if (allocated(error)) return
       end associate
 
@@ -332,7 +333,7 @@ contains
       logical :: bad
       bad = .not. allocated(model%surfaces)
       if (.not. bad) bad = isurf < 1 .or. isurf > size(model%surfaces)
-      if (bad) call fatal_error(error, 'contact pair: '//role//' surface index '//itoa(isurf)// &
+      if (bad) call fatal_error(error, 'contact pair: '//role//' surface index '//int_text(isurf)// &
                                 ' out of range', err_internal)
    end subroutine check_surface_index
 
@@ -355,12 +356,12 @@ contains
       do k = 1, size(surf%elem)
          e = surf%elem(k)
          if (e < 1 .or. e > model%nelem) then
-            call fatal_error(error, where//': element index '//itoa(e)//' out of range', err_internal)
+            call fatal_error(error, where//': element index '//int_text(e)//' out of range', err_internal)
             return
          end if
          if (surf%side(k) < 1 .or. surf%side(k) > model%elem_ptr(e + 1) - model%elem_ptr(e)) then
-            call fatal_error(error, where//': element '//itoa(model%elem_id(e))//' has no side '// &
-                             itoa(surf%side(k)), err_input)
+            call fatal_error(error, where//': element '//int_text(model%elem_id(e))//' has no side '// &
+                             int_text(surf%side(k)), err_input)
             return
          end if
       end do
@@ -520,11 +521,4 @@ contains
       if (allocated(model%node_id)) id = model%node_id(i)
    end function node_user
 
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 end module vemcontact_contact_surfaces

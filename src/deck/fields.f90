@@ -2,6 +2,8 @@
 !> small text helpers (upper case, blank removal, edit distance for suggestions).
 module vemcontact_deck_fields
    use vemcontact_model, only: string_t
+   !> int_str: an integer as text without blanks (the deck's name for int_text)
+   use vemcontact_text, only: int_str => int_text
    implicit none
    private
 
@@ -218,13 +220,4 @@ contains
       end do
       d = prev(len(b))
    end function edit_distance
-
-   !> Integer as text without blanks.
-   pure function int_str(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=12) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function int_str
 end module vemcontact_deck_fields

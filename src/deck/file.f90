@@ -11,6 +11,7 @@
 module vemcontact_deck_file
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_int64_t, c_null_char
    use vemcontact_kinds, only: i8
+   use vemcontact_text, only: int_text
    implicit none
    private
 
@@ -179,12 +180,4 @@ contains
       n = max(0, index(b, c_null_char) - 1)
       s = b(1:n)
    end function strerror
-
-   pure function int_text(i) result(s)
-      integer(i8), intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=24) :: b
-      write (b, '(i0)') i
-      s = trim(b)
-   end function int_text
 end module vemcontact_deck_file

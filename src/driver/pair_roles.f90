@@ -5,9 +5,9 @@
 !> the master through the element sides it covers, a surface added to the model); where
 !> it cannot be (joint water on the pair) the log warns and names the better choices.
 module vemcontact_driver_pair_roles
-   use vemcontact_model, only: model_t, location_string, string_t
-   use vemcontact_model, only: surface_element
+   use vemcontact_model, only: model_t, location_string, string_t, surface_element
    use vemcontact_error, only: error_t
+   use vemcontact_text, only: int_text
    use vemcontact_contact_roles, only: pair_roles, role_advice_t, roles_swap, roles_warn, sides_surface
    implicit none
    private
@@ -41,13 +41,13 @@ contains
             model%pairs(p)%slave = model%pairs(p)%master
             model%pairs(p)%master = s
             model%pairs(p)%roles_swapped = .true.
-            lines = [lines, string_t('  note: '//where//': contact pair '//pair_text(p)//': '//advice%reason// &
+            lines = [lines, string_t('  note: '//where//': contact pair '//int_text(p)//': '//advice%reason// &
                                      '; node to surface constrains the slave''s nodes, so '// &
                                      model%surfaces(model%pairs(p)%slave)%name//' is taken as the slave and '// &
                                      model%surfaces(model%pairs(p)%master)%name//' as the master (the pair''s '// &
                                      'contact results are on '//model%surfaces(model%pairs(p)%slave)%name//'''s nodes)')]
          case (roles_warn)
-            lines = [lines, string_t('  warning: '//where//': contact pair '//pair_text(p)//': '//advice%reason// &
+            lines = [lines, string_t('  warning: '//where//': contact pair '//int_text(p)//': '//advice%reason// &
                                      '; node-to-surface pressures will depend on the mesh ('//advice%kept_by// &
                                      '): make '//model%surfaces(model%pairs(p)%master)%name// &
                                      ' the slave or use TYPE=SURFACE TO SURFACE')]
@@ -72,11 +72,4 @@ contains
       end do
    end function watered
 
-   pure function pair_text(p) result(s)
-      integer, intent(in) :: p
-      character(len=:), allocatable :: s
-      character(len=12) :: buf
-      write (buf, '(i0)') p
-      s = trim(buf)
-   end function pair_text
 end module vemcontact_driver_pair_roles

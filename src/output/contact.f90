@@ -11,7 +11,8 @@ module vemcontact_output_contact
    use vemcontact_kinds, only: wp, ip, i8
    use vemcontact_error, only: error_t
    use vemcontact_output_base64, only: as_bytes
-   use vemcontact_output_vtu, only: put, put_array, vtk_file_attributes, int_type_name, itoa, finish_file
+   use vemcontact_output_vtu, only: put, put_array, vtk_file_attributes, int_type_name, finish_file
+   use vemcontact_text, only: int_text
    use vemcontact_safe_file, only: safe_file_t
    use vemcontact_contact_table, only: contact_table_t
    use vemcontact_output_selection, only: field_selection_t
@@ -125,7 +126,7 @@ contains
       ios = 0
       call put(unit, '<?xml version="1.0"?>'//nl//'<VTKFile type="UnstructuredGrid" version="1.0"' &
                //vtk_file_attributes(z)//'>'//nl//'<UnstructuredGrid>'//nl &
-               //'<Piece NumberOfPoints="'//itoa(int(n, i8))//'" NumberOfCells="'//itoa(int(n, i8))//'">'//nl &
+               //'<Piece NumberOfPoints="'//int_text(int(n, i8))//'" NumberOfCells="'//int_text(int(n, i8))//'">'//nl &
                //'<PointData'//trim(merge(' Vectors="U"', '            ', w%u))//'>'//nl, ios)
       allocate (xyz(3, n))
       xyz(1:2, :) = u(:, tab%node)

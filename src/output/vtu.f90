@@ -24,10 +24,11 @@ module vemcontact_output_vtu
    use vemcontact_output_xml, only: xml_escape
    use vemcontact_output_selection, only: field_selection_t
    use vemcontact_safe_file, only: safe_file_t
+   use vemcontact_text, only: int_text
    implicit none
    private
 
-   public :: write_vtu, finish_file, put, put_array, byte_order, int_type_name, itoa, vtk_file_attributes
+   public :: write_vtu, finish_file, put, put_array, byte_order, int_type_name, vtk_file_attributes
    public :: vtk_cell_type, full_tensor, tensor_names
 
    !> VTK cell types of the elements.
@@ -168,8 +169,8 @@ contains
                //'>'//nl//'<UnstructuredGrid>'//nl, ios)
       ! the dataset's FieldData comes before its pieces
       if (present(extra)) call put_field_data(unit, model, extra, itype, z, ios)
-      call put(unit, '<Piece NumberOfPoints="'//itoa(int(model%nnode, i8)) &
-               //'" NumberOfCells="'//itoa(int(model%nelem, i8))//'">'//nl, ios)
+      call put(unit, '<Piece NumberOfPoints="'//int_text(int(model%nnode, i8)) &
+               //'" NumberOfCells="'//int_text(int(model%nelem, i8))//'">'//nl, ios)
 
       ! point data
       if (w%u) then
@@ -454,11 +455,4 @@ contains
       end if
    end function int_type_name
 
-   pure function itoa(n) result(s)
-      integer(i8), intent(in) :: n
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') n
-      s = trim(buf)
-   end function itoa
 end module vemcontact_output_vtu

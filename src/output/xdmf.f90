@@ -11,6 +11,7 @@ module vemcontact_output_xdmf
    use vemcontact_model, only: model_t, etype_polygon, etype_quad4, etype_tri3, etype_polygon2, &
                                etype_quad8, etype_tri6
    use vemcontact_safe_file, only: safe_file_t
+   use vemcontact_text, only: int_text
    use vemcontact_output_xml, only: xml_escape
    use vemcontact_output_selection, only: field_selection_t, step_selection
    implicit none
@@ -130,16 +131,16 @@ contains
       integer :: kind, nper, istep
 
       h5 = xml_escape(h5name)
-      nn = itoa(int(model%nnode, i8))
-      ne = itoa(int(model%nelem, i8))
+      nn = int_text(int(model%nnode, i8))
+      ne = int_text(int(model%nelem, i8))
       call xdmf_layout(model, kind, nper, length)
       if (nper == 0) then
          topo = '<Topology TopologyType="Mixed" NumberOfElements="'//ne//'">'//nl// &
-                item(itoa(length), 'Int', '4', '/mesh/xdmf_topology')//'</Topology>'//nl
+                item(int_text(length), 'Int', '4', '/mesh/xdmf_topology')//'</Topology>'//nl
       else
          topo = '<Topology TopologyType="'//kind_name(kind)//'" NumberOfElements="'//ne//'"'
-         if (kind == xdmf_polygon) topo = topo//' NodesPerElement="'//itoa(int(nper, i8))//'"'
-         topo = topo//'>'//nl//item(ne//' '//itoa(int(nper, i8)), 'Int', '4', '/mesh/xdmf_topology')// &
+         if (kind == xdmf_polygon) topo = topo//' NodesPerElement="'//int_text(int(nper, i8))//'"'
+         topo = topo//'>'//nl//item(ne//' '//int_text(int(nper, i8)), 'Int', '4', '/mesh/xdmf_topology')// &
                 '</Topology>'//nl
       end if
       topo = topo//'<Geometry GeometryType="XY">'//nl//item(nn//' 2', 'Float', '8', '/mesh/coordinates')// &
@@ -164,11 +165,11 @@ contains
          if (allocated(model%steps(istep)%name)) then
             name = model%steps(istep)%name
          else
-            name = 'Step-'//itoa(int(istep, i8))
+            name = 'Step-'//int_text(int(istep, i8))
          end if
          sel = step_selection(model, istep)
          call out%write('<Grid Name="'//xml_escape(name)//'" GridType="Uniform">'//nl// &
-                        '<Time Value="'//itoa(int(istep, i8))//'"/>'//nl//topo)
+                        '<Time Value="'//int_text(int(istep, i8))//'"/>'//nl//topo)
          if (sel%u) call out%write(attribute('U', 'Vector', 'Node', item(nn//' 2', 'Float', '8', grp//'/U')))
          if (sel%rf) call out%write(attribute('RF', 'Vector', 'Node', item(nn//' 2', 'Float', '8', grp//'/RF')))
          if (sel%s) call out%write( &
@@ -215,11 +216,4 @@ contains
       end select
    end function kind_name
 
-   pure function itoa(v) result(s)
-      integer(i8), intent(in) :: v
-      character(len=:), allocatable :: s
-      character(len=24) :: b
-      write (b, '(i0)') v
-      s = trim(b)
-   end function itoa
 end module vemcontact_output_xdmf
