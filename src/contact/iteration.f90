@@ -76,10 +76,17 @@ module vemcontact_contact_iteration
    !> ... short of which a product's GMRES iterate is still taken when its residual is
    !> below this fraction of the initial one (gap_response): the factor's own solve,
    !> the alternative, leaves out the sliding part of the tangent, which is what kept
-   !> GMRES from converging with it (the soft disc as the master of a stiff block:
-   !> 30 iterations reached 1e-6 to 1e-8, and the updates that mixed in the factor's
-   !> solves left gaps of 1e-12 moving from one iteration to the next)
+   !> GMRES from converging with it (the soft disc as the master of a stiff block,
+   !> 480 arc sides: its 30 iterations reached 1e-6 to 1e-8 of the load; 10 contact
+   !> iterations with the factor's solves mixed into the products, 9 without)
    real(wp), parameter :: gmres_usable = 1.0e-4_wp
+   !> The multiplier step's conjugate gradients stop when every gap it leaves is within
+   !> this fraction of its round-off (gap_noise), which the convergence test accepts:
+   !> a step that stops at the round-off itself leaves the stiff modes' forces
+   !> undetermined by what a gap of 1e-12 is worth to them (a soft curved master on
+   !> a stiff slave: CPRESS 5e-6 apart, 6e-8 of the peak, between two augmentation
+   !> stiffnesses; 3e-7 with the sixteenth, at 1-2 more products per step)
+   real(wp), parameter :: multiplier_aim = 1.0_wp/16.0_wp
    !> The relative residual (residual_norm) a condensed solve must reach, else the
    !> system is factorized: its refined solves reach the round-off of the direct
    !> solve, 1e-16 to 1e-14
@@ -1315,9 +1322,9 @@ contains
    !> update on a curved soft master under a stiff slave, 1.001 at contrast 1e6);
    !> conjugate gradients solve these few modes in as many steps
    !> (docs/contact-formulation.md).  Gaps within `noise` (gap_noise) count as zero;
-   !> the iteration stops when every residual gap is within its noise, when the
-   !> compliance has no positive curvature left (round-off), or after
-   !> multiplier_cg_limit products.
+   !> the iteration stops when every residual gap is within a sixteenth of its noise
+   !> (multiplier_aim), when the compliance has no positive curvature left
+   !> (round-off), or after multiplier_cg_limit products.
    !>
    !> With finite sliding, g is the gap that the next Newton step leaves with the
    !> current multipliers, g + A' J^-1 r (gap_response), not the gap at u: that step
@@ -1328,9 +1335,10 @@ contains
    !> gaps by 2e-3 of the multipliers' correction (3.4e-10 of 1.5e-7; the gaps are
    !> linear along the step to 1e-17, so not the pairing's curvature): every update
    !> left a thousandth of the last one (11-12 iterations, 9 with r's share).  Its
-   !> GMRES solve has no floor: the residual is near krylov_solve's round-off bound
-   !> late in the iteration, where it still moves the gaps by 1e-12 (the disc as the
-   !> master: 17 iterations with that floor, 9 without).
+   !> GMRES solve has no floor: late in the iteration the residual is near
+   !> krylov_solve's round-off bound, 1e3 eps of its scale, where it still moves the
+   !> gaps by 1e-12 (the disc as the master: 16-17 iterations with that floor, 9
+   !> without).
    subroutine multiplier_step(sys, contact, fixed, noise, r, dlam, error)
       class(contact_system_t), intent(inout), target :: sys
       type(contact_state_t), intent(in), target :: contact
@@ -1358,7 +1366,7 @@ contains
       end if
       ! -g, without the gaps within their round-off
       b = merge(-g, 0.0_wp, op%mask .and. abs(g) > noise)
-      call pcg(op, b, noise, multiplier_cg_limit, dlam, res, error)
+      call pcg(op, b, multiplier_aim*noise, multiplier_cg_limit, dlam, res, error)
       ! its solves are solves of the run (the log's solve phase)
       sys%t_solve = sys%t_solve + (wall_time() - t0)
    end subroutine multiplier_step
