@@ -18,7 +18,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hertz_voronoi_master import DECK, P0, increments, mesh  # noqa: E402
+from hertz_voronoi_master import DECK, P0, increments, mesh
 
 COLUMNS = ("iteration", "active", "changed", "factorized", "max_penetration", "max_pressure", "residual")
 
