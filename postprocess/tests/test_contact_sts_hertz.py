@@ -206,6 +206,30 @@ def test_stiff_fine_slave_on_soft_master(exe, meshes):
     assert abs(p / P0 - 1) <= 0.01, p
 
 
+def test_voronoi_disc_slave_nts_iterations(exe, meshes):
+    """The disc as SLAVE with NODE TO SURFACE, finite sliding and HARD (issue 22's
+    target, at most 10 contact iterations per increment): one increment, no cut-back,
+    at most 10 iterations at narc = 240 and 480 (measured 8 and 9; 10 and 12 when the
+    multipliers' step aimed at the gaps at u instead of those the next Newton step
+    leaves, multiplier_step in src/contact/iteration.f90).  The converged answer: no
+    overclosure beyond the tolerance (1e-10 of a tributary length), the load carried
+    by the nodal forces (the flat block's normal is vertical: sum CPRESS * CNAREA =
+    100 up to round-off, 1e-14 measured), the peak within 2 % of p0 at 480 (+1.02 %)
+    and within 2.5 % at 240 (+2.02 %)."""
+    for narc, band in ((480, 0.02), (240, 0.025)):
+        d = meshes[narc]
+        p = peak(exe, d, "DSLAVE", "NODE TO SURFACE")
+        with h5py.File(d / "out" / "DSLAVE_NODE.h5", "r") as f:
+            its = np.array(f["steps/0001/contact/iterations/iteration"])
+            g = f["steps/0001/contact/pair_1"]
+            cp, area, opening = (np.array(g[k]) for k in ("CPRESS", "CNAREA", "COPEN"))
+        assert np.array_equal(its, np.arange(1, its.size + 1)), its    # one increment, no cut-back
+        assert its.size <= 10, (narc, its.size)
+        assert opening.min() >= -1e-10 * area.max(), (narc, opening.min())
+        assert np.sum(cp * area) == pytest.approx(100.0, rel=1e-9)
+        assert abs(p / P0 - 1) <= band, (narc, p)
+
+
 def hertz_1155(exe, d, include, pair_type):
     """inputs/hertz_1155_vem.inp (the paper's Hertz, 1155 first-order VEM elements) with
     HARD and `pair_type` on the mesh `include`: (x, CPRESS, CNAREA, closed) of its slave
