@@ -156,7 +156,8 @@ def test_voronoi_disc_master_nts(exe, meshes):
     480 than at 240 (+2.0 %); the transmitted force (sum CPRESS * CNAREA, the normal
     forces the solution balances, is the load: 1e-8 covers the residual tolerance
     1e-10 times the ratio of the disc's stiffness to the block's that it is measured
-    on); one increment, no cut-back, at most 12 iterations (issue 22's 10: not yet)."""
+    on); one increment, no cut-back, at most 10 iterations (issue 22's target; measured
+    9 at 480, 8 at 240, with the multipliers' step on the residual's gaps)."""
     peaks = {}
     for narc in (480, 240):
         d = meshes[narc]
@@ -170,7 +171,7 @@ def test_voronoi_disc_master_nts(exe, meshes):
             cp = np.array(g["CPRESS"])
             area = np.array(g["CNAREA"])
         assert np.array_equal(its, np.arange(1, its.size + 1)), its    # one increment, no cut-back
-        assert its.size <= 12, its.size
+        assert its.size <= 10, its.size
         assert abs(np.sum(cp * area) / 100.0 - 1) <= 1e-8, np.sum(cp * area)
         peaks[narc] = cp.max() / P0 - 1
     assert abs(peaks[480]) <= 0.02, peaks
