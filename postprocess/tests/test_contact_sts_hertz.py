@@ -87,7 +87,7 @@ def meshes(tmp_path_factory):
     return out
 
 
-def peak(exe, d, pair, pair_type, moduli=(1000.0, 1.0e6), roles="", tag=""):
+def peak(exe, d, pair, pair_type, moduli=(1000.0, 1.0e6), roles="", tag="", law=""):
     """Run the pair with the disc's and the block's moduli; the peak CPRESS.  The
     results are in d/out/{pair}_{first word of pair_type}{tag}.h5."""
     name = f"{pair}_{pair_type.split()[0]}{tag}"
@@ -104,7 +104,7 @@ def peak(exe, d, pair, pair_type, moduli=(1000.0, 1.0e6), roles="", tag=""):
 1.0
 *SURFACE INTERACTION, NAME=I
 *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD
-*CONTACT PAIR, INTERACTION=I, TYPE={pair_type}{roles}
+{law}*CONTACT PAIR, INTERACTION=I, TYPE={pair_type}{roles}
 {pair}_SLAVE, {pair}_MASTER
 *BOUNDARY
 SYMMETRY, 1
@@ -191,6 +191,19 @@ def test_roles_keep(exe, meshes):
         name = g.attrs["slave_surface"]
         assert (name.decode() if isinstance(name, bytes) else name) == "DMASTER_SLAVE"
         assert np.array(g["CPRESS"]).max() / P0 - 1 > 0.10
+
+
+def test_roles_kept_with_friction(exe, meshes):
+    """A frictional pair keeps the deck's roles (CSHEAR and CSLIP are signed along the
+    master's tangent): roles_swapped 0 and the block's nodes as the slave, with a
+    warning in the log (not read here)."""
+    d = meshes[240]
+    peak(exe, d, "DMASTER", "NODE TO SURFACE", tag="_fric", law="*FRICTION\n0.3\n")
+    with h5py.File(d / "out" / "DMASTER_NODE_fric.h5", "r") as f:
+        g = f["steps/0001/contact/pair_1"]
+        assert int(g.attrs["roles_swapped"]) == 0
+        name = g.attrs["slave_surface"]
+        assert (name.decode() if isinstance(name, bytes) else name) == "DMASTER_SLAVE"
 
 
 def test_stiff_fine_slave_on_soft_master(exe, meshes):

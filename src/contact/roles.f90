@@ -18,8 +18,9 @@
 !> `stiffness_contrast` of each other.  pair_roles says whether a pair's roles should be
 !> exchanged (the driver does it before the contact state is built, and reports it), or
 !> only warned about: pairs with joint water (*UPLIFT, *PRESSURE PENETRATION) name
-!> positions on their slave face.  A node-based slave surface becomes the master as the
-!> element sides it covers (sides_surface).
+!> positions on their slave face, and frictional pairs sign CSHEAR and CSLIP along their
+!> master's tangent (the caller says which, `kept_by`).  A node-based slave surface
+!> becomes the master as the element sides it covers (sides_surface).
 module vemcontact_contact_roles
    use vemcontact_kinds, only: wp, ip
    use vemcontact_error, only: error_t
@@ -85,15 +86,15 @@ contains
    end function role_choice
 
    !> The advice for pair p of the model (NODE TO SURFACE pairs only; others keep
-   !> their roles).  `watered` marks pairs with joint water, which are warned about
-   !> rather than swapped.  Faces are measured where they face each other: the sides
+   !> their roles).  A nonempty `kept_by` (what keeps the roles as written: joint
+   !> water, friction) turns an exchange into a warning, and so does ROLES=KEEP.  Faces are measured where they face each other: the sides
    !> with their middle inside the other face's bounding box enlarged by the longest
    !> side of either, so that a long master that only partly lies under the slave is
    !> judged by that part.
-   function pair_roles(model, p, watered) result(advice)
+   function pair_roles(model, p, kept_by) result(advice)
       type(model_t), intent(in) :: model
       integer, intent(in) :: p
-      logical, intent(in) :: watered
+      character(len=*), intent(in) :: kept_by
       type(role_advice_t) :: advice
       type(contact_pair_t) :: pair
       integer(ip), allocatable :: mseg(:, :), melem(:), sseg(:, :), selem(:)
@@ -120,9 +121,9 @@ contains
       advice%action = role_choice(advice%et_slave, advice%et_master, advice%h_slave, advice%h_master)
       if (advice%action == roles_keep) return
       advice%reason = reason_text(advice)
-      if (watered) then
+      if (len(kept_by) > 0) then
          advice%action = roles_warn
-         advice%kept_by = 'joint water on the pair keeps the roles as written'
+         advice%kept_by = kept_by
       else if (.not. pair%auto_roles) then
          advice%action = roles_warn
          advice%kept_by = 'ROLES=KEEP'

@@ -3,7 +3,9 @@
 !> (vemcontact_contact_roles).  A pair written the other way round is exchanged before
 !> any contact state is built, and the log says so (a node-based slave surface serves as
 !> the master through the element sides it covers, a surface added to the model); where
-!> it cannot be (joint water on the pair) the log warns and names the better choices.
+!> it is not (ROLES=KEEP; joint water, whose positions refer to the slave face;
+!> friction, whose CSHEAR and CSLIP are signed along the master's tangent) the log warns
+!> and names the better choices.
 module vemcontact_driver_pair_roles
    use vemcontact_model, only: model_t, location_string, string_t, surface_element
    use vemcontact_error, only: error_t
@@ -28,7 +30,7 @@ contains
       allocate (lines(0))
       if (.not. allocated(model%pairs)) return
       do p = 1, size(model%pairs)
-         advice = pair_roles(model, p, watered(model, p))
+         advice = pair_roles(model, p, kept_by(model, p))
          where = location_string(model, model%pairs(p)%loc)
          select case (advice%action)
          case (roles_swap)
@@ -55,21 +57,31 @@ contains
       end do
    end subroutine choose_pair_roles
 
-   !> Joint water names positions on the pair's slave face: *UPLIFT of the pair's
-   !> interaction in any step, *PRESSURE PENETRATION of the pair.
-   logical function watered(model, p)
+   !> What keeps pair p's roles as written ('' when nothing does): joint water names
+   !> positions on the slave face (*UPLIFT of the pair's interaction in any step,
+   !> *PRESSURE PENETRATION of the pair); friction in any step signs CSHEAR and CSLIP
+   !> along the master's tangent.
+   function kept_by(model, p) result(why)
       type(model_t), intent(in) :: model
       integer, intent(in) :: p
-      integer :: i, j
-      watered = .false.
+      character(len=:), allocatable :: why
+      integer :: i, j, inter
+      why = ''
+      inter = model%pairs(p)%interaction
+      if (inter > 0) then
+         if (model%interactions(inter)%has_friction) why = 'friction keeps the roles as written'
+      end if
       if (.not. allocated(model%steps)) return
       do i = 1, size(model%steps)
+         if (allocated(model%steps(i)%friction_changes)) then
+            if (any(model%steps(i)%friction_changes%interaction == inter)) why = 'friction keeps the roles as written'
+         end if
          if (.not. allocated(model%steps(i)%uplift)) cycle
          do j = 1, size(model%steps(i)%uplift)
-            if (model%steps(i)%uplift(j)%pair == p .or. &
-                model%steps(i)%uplift(j)%interaction == model%pairs(p)%interaction) watered = .true.
+            if (model%steps(i)%uplift(j)%pair == p .or. model%steps(i)%uplift(j)%interaction == inter) &
+               why = 'joint water on the pair keeps the roles as written'
          end do
       end do
-   end function watered
+   end function kept_by
 
 end module vemcontact_driver_pair_roles
