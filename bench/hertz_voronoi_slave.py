@@ -27,7 +27,7 @@ def run(exe, d, small):
     name = f"dslave_{'small' if small else 'finite'}"
     deck = os.path.join(d, name + ".inp")
     with open(deck, "w") as f:
-        f.write(DECK.format(small=", SMALL SLIDING" if small else "").replace(
+        f.write(DECK.format(small=", SMALL SLIDING" if small else "", roles="").replace(
             "DMASTER_SLAVE, DMASTER_MASTER", "DSLAVE_SLAVE, DSLAVE_MASTER"))
     r = subprocess.run([exe, "-q", "-o", os.path.join(d, name), deck], capture_output=True, text=True, check=False)
     print(f"{d} {'SMALL SLIDING' if small else 'finite sliding'}: exit {r.returncode}")
