@@ -456,7 +456,7 @@ contains
       integer, allocatable :: sside(:)
       real(wp), allocatable :: vn(:, :), lsum(:), vs(:, :), cm(:), cs(:)
       logical, allocatable :: facing(:)
-      integer, allocatable :: nsides(:)
+      integer, allocatable :: nsides(:), mseg_count(:)
       real(wp) :: t(2), l
       integer :: k, i, j
       integer(ip) :: m
@@ -470,11 +470,13 @@ contains
       end if
       allocate (vn(2, model%nnode), lsum(model%nnode), source=0.0_wp)
       allocate (seg_at(model%nnode), source=0_ip)
+      allocate (mseg_count(model%nnode), source=0)
       call face_normals(model, seg, seg_elem, [(.true., k=1, size(seg, 2))], vn, cm)
       do k = 1, size(seg, 2)
          l = length2(model%x(:, seg(2, k)) - model%x(:, seg(1, k)))
          do j = 1, 2
             lsum(seg(j, k)) = lsum(seg(j, k)) + l
+            mseg_count(seg(j, k)) = mseg_count(seg(j, k)) + 1
             if (seg_at(seg(j, k)) == 0) seg_at(seg(j, k)) = k
          end do
       end do
@@ -497,7 +499,7 @@ contains
          pd%nn_xi(i) = merge(0.0_wp, 1.0_wp, seg(1, seg_at(m)) == m)
          t = vn(:, m)/lsum(m)
          pd%nn_normal(:, i) = t
-         if (nsides(node(i)) == 2 .or. (nsides(node(i)) == 1 .and. count(seg == m) == 1)) &
+         if (nsides(node(i)) == 2 .or. (nsides(node(i)) == 1 .and. mseg_count(m) == 1)) &
             pd%nn_normal(:, i) = common_normal(t, vs(:, node(i)), cm(m), cs(node(i)))
       end do
    end subroutine node_partners
@@ -1658,11 +1660,11 @@ contains
       type(model_t), intent(in) :: model
       type(contact_table_t), intent(inout) :: tab
       type(error_t), allocatable :: err
-      integer(ip), allocatable :: edge(:, :), edge_elem(:), chain(:, :), mchain(:, :), melem(:), on(:)
+      integer(ip), allocatable :: edge(:, :), edge_elem(:), chain(:, :), mchain(:, :), melem(:), on(:), mnode(:)
       integer, allocatable :: edge_side(:), mside(:)
       logical, allocatable :: new(:), keep(:), closed(:)
       integer(ip) :: n0
-      integer :: p, lo, hi
+      integer :: p, lo, hi, i
       if (size(self%inserted) /= size(self%pairs)) return
       n0 = self%node_base
       do p = 1, size(self%pairs)
@@ -1683,12 +1685,13 @@ contains
          ! the master's, through each entry's partner, when its vertices turn more
          chain = face_chain(model, edge_elem, edge_side)
          on = self%node(lo:hi)
+         mnode = [(partner_of(self, i), i=lo, hi)]
          call master_segments(model, model%pairs(p), mchain, melem, mside, err)
          if (.not. allocated(err)) then
-            if (mean_turn(model%x, mchain, new, partners(model%pairs(p), on), closed) > &
+            if (mean_turn(model%x, mchain, new, mnode, closed) > &
                 curved_face_ratio*mean_turn(model%x, chain, new, on, closed) + curved_face_floor) then
                chain = mchain
-               on = partners(model%pairs(p), on)
+               on = mnode
             end if
          end if
          tab%cpress(lo:hi) = side_pressure(model%x, chain, new, on, tab%cpress(lo:hi)*tab%cnarea(lo:hi), &
@@ -1698,23 +1701,17 @@ contains
       end do
    end subroutine recover_side_pressures
 
-   !> The partner (master node) of each slave node of a SURFACE TO SURFACE pair, the
-   !> slave node itself where it has none (it is then on no master side).
-   pure function partners(pair, node) result(m)
-      type(contact_pair_t), intent(in) :: pair
-      integer(ip), intent(in) :: node(:)
-      integer(ip) :: m(size(node))
-      integer(ip), allocatable :: of(:)
-      integer :: j
-      m = node
-      if (.not. allocated(pair%partner)) return
-      if (size(pair%partner, 2) == 0) return
-      allocate (of(max(maxval(pair%partner(1, :)), maxval(node))), source=0_ip)
-      of(pair%partner(1, :)) = pair%partner(2, :)
-      do j = 1, size(node)
-         if (of(node(j)) > 0) m(j) = of(node(j))
-      end do
-   end function partners
+   !> The partner (master node) of node-to-node entry i, the end of its segment at
+   !> xi = 0 or 1; the slave node itself where it has none (it is then on no master side).
+   pure integer(ip) function partner_of(self, i) result(m)
+      type(contact_state_t), intent(in) :: self
+      integer, intent(in) :: i
+      integer(ip) :: nodes(3)
+      m = self%node(i)
+      if (self%iseg(i) == 0) return
+      nodes = nodes_of(self, i)
+      m = merge(nodes(2), nodes(3), self%xi(i) < 0.5_wp)
+   end function partner_of
 
    !> Mean turning angle (radians) of a face chain at its own nodes (not `new`) among
    !> the closed entries' nodes `node`: 0 on a straight face, the polygon's turn per

@@ -27,6 +27,7 @@ module vemcontact_contact_roles
    use vemcontact_model, only: model_t, contact_pair_t, surface_t, surface_element, pair_node_to_surface
    use vemcontact_contact_surfaces, only: master_segments, slave_edges
    use vemcontact_contact_search, only: median
+   use vemcontact_contact_geometry, only: length2
    implicit none
    private
 
@@ -187,7 +188,7 @@ contains
       real(wp) :: len(size(seg, 2))
       integer :: k
       do k = 1, size(seg, 2)
-         len(k) = hypot(x(1, seg(2, k)) - x(1, seg(1, k)), x(2, seg(2, k)) - x(2, seg(1, k)))
+         len(k) = length2(x(:, seg(2, k)) - x(:, seg(1, k)))
       end do
    end function lengths
 
